@@ -1,0 +1,48 @@
+//! The abstract syntax tree of Structured Text (and, later, of every language
+//! that lowers to the same semantic model).
+//!
+//! Invariants:
+//! - Every node carries the [`Span`] of its source text; diagnostics point there.
+//! - Names are [`Ident`]s: an interned, case-folded [`Symbol`] plus the span of
+//!   the spelling. Elementary type names (`INT`, `TIME`, ...) are plain `Ident`s
+//!   resolved by `sema`; only `STRING`/`WSTRING` have syntax of their own.
+//! - The tree is what was written: no desugaring, no implicit conversions, no
+//!   constant folding. After a syntax error the parser still returns a tree,
+//!   with [`ExprKind::Error`] or missing pieces where text could not be parsed.
+//! - Statements and expressions are different types.
+
+mod decl;
+mod expr;
+mod stmt;
+
+pub use decl::*;
+pub use expr::*;
+pub use stmt::*;
+
+use automat_base::{FileId, Span, Symbol};
+
+/// A name as written: its case-folded symbol and where it was written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Ident {
+    pub sym: Symbol,
+    pub span: Span,
+}
+
+/// One parsed file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SourceUnit {
+    pub file: FileId,
+    pub items: Vec<Item>,
+}
+
+/// A top-level declaration.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Item {
+    Pou(Pou),
+    /// `TYPE ... END_TYPE`
+    Types(TypeBlock),
+    /// A `VAR_GLOBAL ... END_VAR` block outside any configuration (how CODESYS
+    /// and TwinCAT global variable lists are written).
+    Globals(VarBlock),
+    Config(Configuration),
+}

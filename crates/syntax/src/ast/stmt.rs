@@ -1,0 +1,70 @@
+//! Statements of Structured Text.
+
+use super::{Expr, Ident};
+use automat_base::Span;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stmt {
+    pub kind: StmtKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum StmtKind {
+    /// `target := value;`
+    Assign { target: Expr, value: Expr },
+    /// An expression statement; valid only when it is a call (`fb(...)`, `f(x)`).
+    Expr(Expr),
+    Return,
+    /// `IF c THEN ... ELSIF c THEN ... ELSE ... END_IF`
+    If {
+        branches: Vec<CondBlock>,
+        else_body: Option<Vec<Stmt>>,
+    },
+    Case {
+        selector: Expr,
+        arms: Vec<CaseArm>,
+        else_body: Option<Vec<Stmt>>,
+    },
+    For {
+        var: Ident,
+        from: Expr,
+        to: Expr,
+        by: Option<Expr>,
+        body: Vec<Stmt>,
+    },
+    While {
+        cond: Expr,
+        body: Vec<Stmt>,
+    },
+    Repeat {
+        body: Vec<Stmt>,
+        until: Expr,
+    },
+    Exit,
+    Continue,
+    /// A lone `;`.
+    Empty,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct CondBlock {
+    pub cond: Expr,
+    pub body: Vec<Stmt>,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct CaseArm {
+    pub labels: Vec<CaseLabel>,
+    pub body: Vec<Stmt>,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum CaseLabel {
+    /// A constant: integer, enumeration value (`Red`, `Color#Red`), constant name.
+    Value(Expr),
+    /// `lo..hi`
+    Range(Expr, Expr),
+}
