@@ -1,1 +1,56 @@
-fn main() {}
+//! `automat`: the command-line front end.
+//!
+//! Exit codes are a contract that scripts rely on: 0 ok, 1 the program has
+//! errors, 2 bad command line or unreadable input (3 is reserved for runtime
+//! faults of `automat run`).
+
+mod cmd_check;
+mod cmd_explain;
+mod files;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// automat — an IEC 61131-3 soft-PLC toolchain.
+///
+/// Compiles Structured Text programs and reports every error with its
+/// location, a code (`automat explain E030`) and a source excerpt.
+#[derive(Parser)]
+#[command(name = "automat", version, about, long_about = None, propagate_version = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    Check(cmd_check::CheckArgs),
+    Explain(cmd_explain::ExplainArgs),
+}
+
+/// Exit status of a command.
+pub enum Outcome {
+    Ok,
+    ProgramErrors,
+    BadInput,
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            // clap prints help/version to stdout (exit 0) and usage errors to stderr (exit 2).
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
+        }
+    };
+    let outcome = match cli.command {
+        Command::Check(args) => cmd_check::run(&args),
+        Command::Explain(args) => cmd_explain::run(&args),
+    };
+    ExitCode::from(match outcome {
+        Outcome::Ok => 0,
+        Outcome::ProgramErrors => 1,
+        Outcome::BadInput => 2,
+    })
+}

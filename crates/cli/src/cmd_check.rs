@@ -1,0 +1,64 @@
+//! `automat check`: parse and check a project, print diagnostics.
+
+use crate::{files, Outcome};
+use automat_base::{render, Interner, Severity};
+use clap::{Args, ValueEnum};
+use std::path::PathBuf;
+
+/// Check Structured Text sources and report every error and warning.
+///
+/// All files given (and all *.st files under the directories given) form one
+/// project: POUs, types and globals of one file are visible in the others.
+/// Exits with 0 when there are no errors, 1 when there are, 2 when a path
+/// cannot be read.
+#[derive(Args)]
+pub struct CheckArgs {
+    /// Source files or project directories (searched recursively for *.st).
+    #[arg(required = true, value_name = "PATH")]
+    paths: Vec<PathBuf>,
+    /// Output format of the diagnostics.
+    #[arg(long, value_enum, default_value_t = Format::Human)]
+    format: Format,
+    /// Treat warnings as errors (exit 1 when there is any warning).
+    #[arg(long)]
+    deny_warnings: bool,
+    /// Do not print warnings.
+    #[arg(long, conflicts_with = "deny_warnings")]
+    no_warnings: bool,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Format {
+    /// rustc-like text: `file:line:col: error[E030]: message`, an excerpt and a caret.
+    Human,
+    /// A JSON array of diagnostics (code, severity, file, line, column, end, message, labels, notes).
+    Json,
+}
+
+pub fn run(args: &CheckArgs) -> Outcome {
+    let map = match files::collect(&args.paths).and_then(|f| files::load(&f)) {
+        Ok(m) => m,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Outcome::BadInput;
+        }
+    };
+    let mut interner = Interner::new();
+    let (_units, analysis) = automat_sema::check_sources(&map, &mut interner);
+    let mut diags = analysis.diagnostics;
+    if args.no_warnings {
+        diags.retain(|d| d.severity == Severity::Error);
+    }
+    let failed = diags
+        .iter()
+        .any(|d| d.is_error() || (args.deny_warnings && d.severity == Severity::Warning));
+    match args.format {
+        Format::Human => print!("{}", render::render_report(&map, &diags)),
+        Format::Json => println!("{}", render::render_json(&map, &diags)),
+    }
+    if failed {
+        Outcome::ProgramErrors
+    } else {
+        Outcome::Ok
+    }
+}
