@@ -1,0 +1,95 @@
+//! The command-line contract: exit codes, output formats, help.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn automat(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_automat"))
+        .args(args)
+        .output()
+        .expect("run automat")
+}
+
+fn temp_file(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("automat-cli-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("write temp file");
+    path
+}
+
+const BAD: &str = "PROGRAM p\nVAR\n    i : INT;\n    d : DINT;\nEND_VAR\n    i := d;\n    undefined := 1;\nEND_PROGRAM\n";
+
+#[test]
+fn clean_project_exits_0_and_prints_nothing() {
+    let crane = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/crane");
+    let out = automat(&["check", crane]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stdout));
+    assert!(out.stdout.is_empty());
+}
+
+#[test]
+fn errors_exit_1_with_location_code_and_caret() {
+    let path = temp_file("bad.st", BAD);
+    let out = automat(&["check", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let first = text.lines().next().unwrap_or("");
+    assert!(first.ends_with("bad.st:6:10: error[E030]: cannot assign a value of type DINT to `i` of type INT"), "{text}");
+    assert!(text.contains("6 |     i := d;\n  |          ^"), "{text}");
+    assert!(text.contains("bad.st:7:5: error[E020]"), "{text}");
+    assert!(text.contains("2 errors, 0 warnings"), "{text}");
+}
+
+#[test]
+fn json_format_is_machine_readable() {
+    let path = temp_file("bad_json.st", BAD);
+    let out = automat(&["check", "--format", "json", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("valid JSON");
+    let arr = v.as_array().expect("array");
+    assert_eq!(arr.len(), 2);
+    assert_eq!(arr[0]["code"], "E030");
+    assert_eq!(arr[0]["severity"], "error");
+    assert_eq!(arr[0]["line"], 6);
+    assert_eq!(arr[0]["column"], 10);
+    assert_eq!(arr[1]["code"], "E020");
+    assert_eq!(arr[1]["line"], 7);
+}
+
+#[test]
+fn missing_path_and_bad_flags_exit_2() {
+    let out = automat(&["check", "/definitely/not/here.st"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("/definitely/not/here.st"));
+    assert_eq!(automat(&["check"]).status.code(), Some(2));
+    assert_eq!(automat(&["check", "--format", "xml", "x.st"]).status.code(), Some(2));
+    assert_eq!(automat(&["frobnicate"]).status.code(), Some(2));
+}
+
+#[test]
+fn help_documents_every_command_and_flag() {
+    let top = String::from_utf8_lossy(&automat(&["--help"]).stdout).to_string();
+    for cmd in ["check", "explain"] {
+        assert!(top.contains(cmd), "{top}");
+    }
+    let check = String::from_utf8_lossy(&automat(&["check", "--help"]).stdout).to_string();
+    for flag in ["--format", "--deny-warnings", "--no-warnings", "PATH"] {
+        assert!(check.contains(flag), "{check}");
+    }
+    let explain = automat(&["explain", "E030"]);
+    assert_eq!(explain.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&explain.stdout).starts_with("E030: type mismatch"));
+    assert_eq!(automat(&["explain", "E999"]).status.code(), Some(2));
+}
+
+#[test]
+fn non_utf8_source_is_read_not_rejected() {
+    let dir = std::env::temp_dir().join(format!("automat-cli-latin1-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let path = dir.join("latin1.st");
+    // A Latin-1 'é' (0xE9) inside a comment.
+    std::fs::write(&path, b"(* caf\xe9 *)\nPROGRAM p\nVAR x : INT; END_VAR\n x := 1;\nEND_PROGRAM\n").expect("write");
+    let out = automat(&["check", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stdout));
+}
