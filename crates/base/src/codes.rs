@@ -70,6 +70,8 @@ codes! {
         "A VAR_EXTERNAL declaration needs a VAR_GLOBAL of the same name and type in the configuration, resource or project.";
     E026 => "name is not a variable",
         "A type, POU or other non-variable name is used where a value is expected.";
+    E027 => "recursive type",
+        "A type is defined in terms of itself: a structure that contains itself (directly or through arrays and other structures) or a cycle of type aliases. A structure may point to its own type through `REF_TO`.";
 
     // ---- types ----
     E030 => "type mismatch",

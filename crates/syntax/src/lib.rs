@@ -3,10 +3,18 @@
 //! Invariant: parsing never fails. [`parse`] returns a tree and the list of
 //! diagnostics; later stages work on whatever parsed. This crate knows nothing
 //! of types or of the stages above it.
+//!
+//! Layout: [`lexer`] turns bytes into tokens (decoding literals through
+//! `literal`), `parser` turns tokens into the [`ast`].
 
 pub mod ast;
+pub mod lexer;
+mod literal;
+mod parser;
 
-use automat_base::{Diagnostic, FileId, Interner};
+use automat_base::{Code, Diagnostic, FileId, Interner, Span};
+
+pub use parser::MAX_DEPTH;
 
 /// The result of parsing one file: always a tree, plus what went wrong.
 #[derive(Debug)]
@@ -15,15 +23,30 @@ pub struct Parsed {
     pub diagnostics: Vec<Diagnostic>,
 }
 
+/// Spans are 32-bit byte offsets: text past this is not parsed.
+const MAX_LEN: usize = u32::MAX as usize - 1;
+
 /// Parses one Structured Text file. Never panics, never fails: errors are
-/// returned as diagnostics (codes E001–E007) next to the tree of what parsed.
+/// returned as diagnostics (codes E001–E007) next to the tree of what parsed,
+/// sorted by position.
 pub fn parse(file: FileId, text: &str, interner: &mut Interner) -> Parsed {
-    let _ = (text, interner);
-    Parsed {
-        unit: ast::SourceUnit {
-            file,
-            items: Vec::new(),
-        },
-        diagnostics: Vec::new(),
-    }
+    let mut diagnostics = Vec::new();
+    let text = if text.len() > MAX_LEN {
+        let mut cut = MAX_LEN;
+        while !text.is_char_boundary(cut) {
+            cut -= 1;
+        }
+        diagnostics.push(Diagnostic::error(
+            Code::E005,
+            Span::new(file, cut as u32, cut as u32),
+            "the file is larger than 4 GiB: the rest is not parsed",
+        ));
+        &text[..cut]
+    } else {
+        text
+    };
+    let lexed = lexer::lex(file, text, interner, &mut diagnostics);
+    let unit = parser::parse_tokens(file, text, lexed, interner, &mut diagnostics);
+    diagnostics.sort_by_key(|d| d.span.start);
+    Parsed { unit, diagnostics }
 }

@@ -90,22 +90,70 @@ macro_rules! keywords {
         pub enum Kw { $($kw),* }
 
         impl Kw {
-            /// The canonical (upper-case) spelling.
-            pub fn text(self) -> &'static str {
-                match self { $(Kw::$kw => $text),* }
-            }
+            const ALL: &'static [Kw] = &[$(Kw::$kw),*];
+            const TEXTS: &'static [&'static [u8]] = &[$($text),*];
 
-            /// The keyword spelled by `upper` (already upper-cased), if any.
-            pub fn from_upper(upper: &[u8]) -> Option<Kw> {
-                // A match on byte strings compiles to a length switch plus
-                // comparisons: no allocation, no hashing.
-                match upper { $($text => Some(Kw::$kw),)* _ => None }
+            /// The canonical (upper-case) spelling.
+            pub fn text(self) -> &'static [u8] {
+                match self { $(Kw::$kw => $text),* }
             }
         }
     };
 }
 
-// `match` on `&[u8]` needs byte-string patterns; the macro takes `b"..."`.
+/// Keyword lookup by a perfect hash: the multiplier was chosen so that no
+/// two keywords share a slot (checked when the table is built, at compile
+/// time). One hash over the word, one case-insensitive comparison.
+const KW_HASH_MUL: u32 = 1490;
+
+/// One step of the keyword hash (case-insensitive).
+#[inline]
+pub const fn kw_hash_step(h: u32, c: u8) -> u32 {
+    h.wrapping_mul(KW_HASH_MUL)
+        .wrapping_add(c.to_ascii_uppercase() as u32)
+}
+
+const fn kw_slot(h: u32) -> usize {
+    ((h ^ (h >> 7)) & 255) as usize
+}
+
+/// Slot → index + 1 into `Kw::ALL` (0 = no keyword).
+const KW_TABLE: [u8; 256] = {
+    let mut table = [0u8; 256];
+    let mut i = 0;
+    while i < Kw::TEXTS.len() {
+        let w = Kw::TEXTS[i];
+        let mut h = 0u32;
+        let mut j = 0;
+        while j < w.len() {
+            h = kw_hash_step(h, w[j]);
+            j += 1;
+        }
+        let slot = kw_slot(h);
+        assert!(table[slot] == 0, "keyword hash collision: change KW_HASH_MUL");
+        table[slot] = (i + 1) as u8;
+        i += 1;
+    }
+    table
+};
+
+impl Kw {
+    /// The keyword spelled by `word` in any case, if any.
+    #[inline]
+    pub fn lookup(word: &[u8]) -> Option<Kw> {
+        let h = word.iter().fold(0u32, |h, &c| kw_hash_step(h, c));
+        Kw::lookup_hashed(word, h)
+    }
+
+    /// As [`Kw::lookup`], with the hash already computed by [`kw_hash_step`].
+    #[inline]
+    pub fn lookup_hashed(word: &[u8], h: u32) -> Option<Kw> {
+        let i = usize::from(KW_TABLE[kw_slot(h)]).checked_sub(1)?;
+        let kw = *Kw::ALL.get(i)?;
+        kw.text().eq_ignore_ascii_case(word).then_some(kw)
+    }
+}
+
 keywords! {
     Program => b"PROGRAM",
     EndProgram => b"END_PROGRAM",
@@ -268,11 +316,16 @@ mod tests {
     use super::*;
 
     #[test]
-    fn keyword_lookup_is_exact() {
-        assert_eq!(Kw::from_upper(b"END_IF"), Some(Kw::EndIf));
-        assert_eq!(Kw::from_upper(b"END_FUNCTION_BLOCK"), Some(Kw::EndFunctionBlock));
-        assert_eq!(Kw::from_upper(b"END_I"), None);
-        assert_eq!(Kw::from_upper(b"end_if"), None);
+    fn keyword_lookup_finds_every_keyword_in_any_case() {
+        for &kw in Kw::ALL {
+            assert_eq!(Kw::lookup(kw.text()), Some(kw));
+            assert_eq!(Kw::lookup(kw.name().to_ascii_lowercase().as_bytes()), Some(kw));
+        }
+        assert_eq!(Kw::lookup(b"End_If"), Some(Kw::EndIf));
+        assert_eq!(Kw::lookup(b"END_I"), None);
+        assert_eq!(Kw::lookup(b"INT"), None);
+        assert_eq!(Kw::lookup(b""), None);
+        assert_eq!(Kw::lookup(b"END_IFX"), None);
         assert_eq!(Kw::EndIf.name(), "END_IF");
     }
 }

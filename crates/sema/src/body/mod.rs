@@ -1,0 +1,250 @@
+//! Phase 2: bodies. Types every statement and expression of every POU
+//! against the finished declaration model, with the rules of
+//! [`crate::lattice`].
+//!
+//! Invariants:
+//! - The model is read-only here; a [`Checker`] can type any expression of
+//!   any POU at any time (lowering uses [`crate::type_of`]).
+//! - A silent checker (no diagnostics wanted) never formats a message.
+//! - Expression recursion is bounded ([`MAX_EXPR_DEPTH`]).
+
+mod call;
+mod expr;
+mod stdcall;
+mod stmt;
+
+use crate::model::{Model, Pou, Var};
+use crate::names::ty_name;
+use crate::ops::Ty;
+use crate::stdlib::{self, Sig};
+use crate::types::{PouId, TypeId, TypeKind};
+use automat_base::{Code, Diagnostic, Interner, Span, Symbol};
+use automat_syntax::ast::{self, PouKind};
+use rustc_hash::FxHashMap;
+use std::rc::Rc;
+
+/// Deepest expression nesting typed (deeper ones are reported, not overflowed).
+pub const MAX_EXPR_DEPTH: u32 = 256;
+
+/// Where names are looked up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scope {
+    /// Inside a POU body: its variables, then the project's globals.
+    Pou(PouId),
+    /// In a configuration (resource `None`) or one of its resources: the
+    /// resource's globals, the configuration's, then the project's.
+    Config(usize, Option<usize>),
+}
+
+/// What a name denotes in a scope.
+pub(crate) enum Named<'m> {
+    Var,
+    Pou(PouId, &'m Pou),
+    Type,
+    StdFn,
+    Unknown,
+}
+
+/// How an expression is used.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Access {
+    Read,
+    /// The target of `:=`.
+    Assign,
+    /// The target of an output binding `=>`.
+    Output,
+    /// Passed to a VAR_IN_OUT (may be written).
+    InOut,
+    /// The control variable of FOR.
+    ForVar,
+}
+
+impl Access {
+    fn writes(self) -> bool {
+        self != Access::Read
+    }
+}
+
+/// Types bodies; collects diagnostics unless silent.
+pub struct Checker<'m> {
+    pub(crate) model: &'m Model,
+    pub(crate) interner: &'m Interner,
+    pub(crate) scope: Scope,
+    pub(crate) diags: Vec<Diagnostic>,
+    silent: bool,
+    std_cache: FxHashMap<Symbol, Option<Rc<Sig>>>,
+    pub(crate) loop_depth: u32,
+    pub(crate) depth: u32,
+}
+
+impl<'m> Checker<'m> {
+    pub fn new(
+        model: &'m Model,
+        interner: &'m Interner,
+        scope: Scope,
+        silent: bool,
+    ) -> Checker<'m> {
+        Checker {
+            model,
+            interner,
+            scope,
+            diags: Vec::new(),
+            silent,
+            std_cache: FxHashMap::default(),
+            loop_depth: 0,
+            depth: 0,
+        }
+    }
+
+    /// Checks the body of a POU.
+    pub fn check_pou(&mut self, id: PouId, pou: &ast::Pou) {
+        self.scope = Scope::Pou(id);
+        self.loop_depth = 0;
+        self.depth = 0;
+        match &pou.body {
+            ast::Body::St(stmts) => self.stmts(stmts),
+        }
+    }
+
+    /// Emits a diagnostic built only when someone listens.
+    pub(crate) fn err(&mut self, code: Code, span: Span, msg: impl FnOnce(&Self) -> String) {
+        if !self.silent {
+            let m = msg(self);
+            self.diags.push(Diagnostic::error(code, span, m));
+        }
+    }
+
+    pub(crate) fn warn(&mut self, code: Code, span: Span, msg: impl FnOnce(&Self) -> String) {
+        if !self.silent {
+            let m = msg(self);
+            self.diags.push(Diagnostic::warning(code, span, m));
+        }
+    }
+
+    pub(crate) fn name(&self, s: Symbol) -> &'m str {
+        self.interner.name(s)
+    }
+
+    pub(crate) fn tyname(&self, t: Ty) -> String {
+        ty_name(&self.model.types, self.interner, t)
+    }
+
+    pub(crate) fn type_name(&self, t: TypeId) -> String {
+        crate::names::type_name(&self.model.types, self.interner, t)
+    }
+
+    /// The POU being checked.
+    pub(crate) fn pou(&self) -> Option<&'m Pou> {
+        match self.scope {
+            Scope::Pou(id) => self.model.pou(id),
+            Scope::Config(..) => None,
+        }
+    }
+
+    /// `in `MainProg`` / `in configuration `Cell`` for messages.
+    pub(crate) fn where_(&self) -> String {
+        match self.scope {
+            Scope::Pou(id) => match self.model.pou(id) {
+                Some(p) => format!("in `{}`", self.name(p.name)),
+                None => String::new(),
+            },
+            Scope::Config(c, _) => match self.model.configs.get(c) {
+                Some(cf) => format!("in configuration `{}`", self.name(cf.name)),
+                None => String::new(),
+            },
+        }
+    }
+
+    /// The variable a name denotes in the current scope.
+    pub(crate) fn var(&self, sym: Symbol) -> Option<(&'m Var, bool)> {
+        match self.scope {
+            Scope::Pou(id) => {
+                if let Some(v) = self.model.pou(id).and_then(|p| p.vars.get(sym)) {
+                    return Some((v, true));
+                }
+            }
+            Scope::Config(c, r) => {
+                let cf = self.model.configs.get(c)?;
+                if let Some(v) = r
+                    .and_then(|r| cf.resources.get(r))
+                    .and_then(|res| res.globals.get(sym))
+                {
+                    return Some((v, false));
+                }
+                if let Some(v) = cf.globals.get(sym) {
+                    return Some((v, false));
+                }
+            }
+        }
+        // Project globals: constants are visible everywhere (they size arrays
+        // and strings); variables only through VAR_EXTERNAL in a POU.
+        let g = self.model.globals.get(sym)?;
+        match self.scope {
+            Scope::Pou(_) if !g.constant => None,
+            _ => Some((g, false)),
+        }
+    }
+
+    /// What a name denotes when it is not a variable.
+    pub(crate) fn lookup(&mut self, sym: Symbol) -> Named<'m> {
+        if self.var(sym).is_some() {
+            return Named::Var;
+        }
+        if let Some((id, p)) = self.model.pou_named(sym) {
+            return Named::Pou(id, p);
+        }
+        if self.model.type_names.contains_key(&sym) || self.model.syms.is_elementary(sym) {
+            return Named::Type;
+        }
+        if self.std_fn(sym).is_some() {
+            return Named::StdFn;
+        }
+        Named::Unknown
+    }
+
+    /// The standard function of a name (cached per name).
+    pub(crate) fn std_fn(&mut self, sym: Symbol) -> Option<Rc<Sig>> {
+        let interner = self.interner;
+        self.std_cache
+            .entry(sym)
+            .or_insert_with(|| stdlib::lookup(interner.name(sym)).map(Rc::new))
+            .clone()
+    }
+
+    /// A type named in an expression (literal prefixes).
+    pub(crate) fn type_by_name(&self, id: ast::Ident) -> Option<TypeId> {
+        if let Some(&e) = self.model.syms.elems.get(&id.sym) {
+            return Some(TypeId::elem(e));
+        }
+        if id.sym == self.model.syms.string {
+            return Some(TypeId::STRING);
+        }
+        if id.sym == self.model.syms.wstring {
+            return Some(TypeId::WSTRING);
+        }
+        self.model.type_names.get(&id.sym).copied()
+    }
+
+    /// A message fragment for a non-variable name used as a value.
+    pub(crate) fn what_is(&self, sym: Symbol, named: &Named) -> String {
+        let n = self.name(sym);
+        match named {
+            Named::Pou(_, p) => match p.kind {
+                PouKind::Function => format!("`{n}` is a function; call it as `{n}(...)`"),
+                PouKind::FunctionBlock => format!("`{n}` is a function block type, not a variable"),
+                PouKind::Program => format!("`{n}` is a program, not a variable"),
+            },
+            Named::Type => format!("`{n}` is a type, not a variable"),
+            Named::StdFn => format!("`{n}` is a standard function; call it as `{n}(...)`"),
+            _ => format!("`{n}` is not a variable"),
+        }
+    }
+
+    /// Whether a type is a function block instance; gives its POU.
+    pub(crate) fn fb_of(&self, t: TypeId) -> Option<PouId> {
+        match self.model.types.get(t) {
+            TypeKind::Fb { pou, .. } => Some(*pou),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,334 @@
+//! Checking statements: assignments, calls as statements, conditions,
+//! CASE selectors and labels, FOR loops, EXIT/CONTINUE placement.
+
+use super::{Access, Checker, MAX_EXPR_DEPTH};
+use crate::convert::{fits, Fit};
+use crate::names::expr_text;
+use crate::ops::{Ty, Typed};
+use crate::types::{TypeId, TypeKind};
+use crate::value::Value;
+use automat_base::{Code, Span};
+use automat_syntax::ast::{CaseArm, CaseLabel, Expr, ExprKind, Ident, Stmt, StmtKind};
+
+impl<'m> Checker<'m> {
+    pub(crate) fn stmts(&mut self, body: &[Stmt]) {
+        for s in body {
+            self.stmt(s);
+        }
+    }
+
+    fn stmt(&mut self, s: &Stmt) {
+        if self.depth >= MAX_EXPR_DEPTH {
+            self.err(Code::E070, s.span, |_| {
+                "statements nested too deeply".into()
+            });
+            return;
+        }
+        self.depth += 1;
+        self.stmt_inner(s);
+        self.depth -= 1;
+    }
+
+    fn stmt_inner(&mut self, s: &Stmt) {
+        match &s.kind {
+            StmtKind::Assign { target, value } => {
+                let t = self.expr_access(target, None, Access::Assign);
+                let expect = match t.ty {
+                    Ty::Of(id) => Some(id),
+                    _ => None,
+                };
+                let v = self.expr(value, expect);
+                if let Some(to) = expect {
+                    self.assign_fits(&v, to, value.span, target);
+                }
+            }
+            StmtKind::Expr(e) => match &e.kind {
+                ExprKind::Call { callee, args } => {
+                    self.call(e, callee, args, None, true);
+                }
+                _ => {
+                    let t = self.expr(e, None);
+                    if t.ty != Ty::Error {
+                        self.err(Code::E063, e.span, |c| {
+                            format!(
+                                "the expression `{}` has no effect; only calls can be statements",
+                                expr_text(c.interner, e)
+                            )
+                        });
+                    }
+                }
+            },
+            StmtKind::Return | StmtKind::Empty => {}
+            StmtKind::If {
+                branches,
+                else_body,
+            } => {
+                for (i, b) in branches.iter().enumerate() {
+                    self.condition(&b.cond, if i == 0 { "IF" } else { "ELSIF" });
+                    self.stmts(&b.body);
+                }
+                if let Some(body) = else_body {
+                    self.stmts(body);
+                }
+            }
+            StmtKind::Case {
+                selector,
+                arms,
+                else_body,
+            } => self.case(selector, arms, else_body.as_deref()),
+            StmtKind::For {
+                var,
+                from,
+                to,
+                by,
+                body,
+            } => self.for_loop(*var, from, to, by.as_ref(), body),
+            StmtKind::While { cond, body } => {
+                self.condition(cond, "WHILE");
+                self.loop_body(body);
+            }
+            StmtKind::Repeat { body, until } => {
+                self.loop_body(body);
+                self.condition(until, "UNTIL");
+            }
+            StmtKind::Exit => {
+                if self.loop_depth == 0 {
+                    self.err(Code::E060, s.span, |_| {
+                        "EXIT outside a FOR, WHILE or REPEAT loop".into()
+                    });
+                }
+            }
+            StmtKind::Continue => {
+                if self.loop_depth == 0 {
+                    self.err(Code::E061, s.span, |_| {
+                        "CONTINUE outside a FOR, WHILE or REPEAT loop".into()
+                    });
+                }
+            }
+        }
+    }
+
+    fn loop_body(&mut self, body: &[Stmt]) {
+        self.loop_depth += 1;
+        self.stmts(body);
+        self.loop_depth -= 1;
+    }
+
+    /// `target := v`: E030 (types or a literal out of range), E038 (subrange), W003.
+    pub(crate) fn assign_fits(&mut self, v: &Typed, to: TypeId, span: Span, target: &Expr) {
+        let shown = || v.value.as_ref().map_or_else(String::new, |x| x.show());
+        match fits(&self.model.types, v, to) {
+            Fit::Ok => {}
+            Fit::NarrowedConstant => {
+                let val = shown();
+                self.warn(Code::W003, span, |c| {
+                    format!(
+                        "the constant {val} is narrowed to {} for `{}`",
+                        c.type_name(to),
+                        expr_text(c.interner, target)
+                    )
+                });
+            }
+            Fit::OutOfRange => {
+                let val = shown();
+                self.err(Code::E030, span, |c| {
+                    format!(
+                        "the value {val} does not fit `{}` of type {}",
+                        expr_text(c.interner, target),
+                        c.type_name(to)
+                    )
+                });
+            }
+            Fit::OutOfSubrange { lo, hi } => {
+                let val = shown();
+                self.err(Code::E038, span, |c| {
+                    format!(
+                        "the value {val} is outside the subrange {lo}..{hi} of `{}`",
+                        expr_text(c.interner, target)
+                    )
+                });
+            }
+            Fit::Mismatch => {
+                let val = shown();
+                self.err(Code::E030, span, |c| {
+                    let from = match v.ty {
+                        Ty::AnyInt | Ty::AnyReal => format!("the value {val}"),
+                        Ty::AnyStr { .. } => format!("the string {val}"),
+                        t => format!("a value of type {}", c.tyname(t)),
+                    };
+                    format!(
+                        "cannot assign {from} to `{}` of type {}",
+                        expr_text(c.interner, target),
+                        c.type_name(to)
+                    )
+                });
+            }
+        }
+    }
+
+    /// IF / ELSIF / WHILE / UNTIL conditions are BOOL (E032).
+    fn condition(&mut self, cond: &Expr, what: &'static str) {
+        let t = self.expr(cond, Some(TypeId::BOOL));
+        if t.ty == Ty::Error {
+            return;
+        }
+        // Strict: an integer literal is no condition, even 0 or 1.
+        if t.ty == Ty::AnyInt || fits(&self.model.types, &t, TypeId::BOOL) != Fit::Ok {
+            self.err(Code::E032, cond.span, |c| {
+                format!(
+                    "the {what} condition must be BOOL, found {}",
+                    c.tyname(t.ty)
+                )
+            });
+        }
+    }
+
+    fn case(&mut self, selector: &Expr, arms: &[CaseArm], else_body: Option<&[Stmt]>) {
+        let sel = self.expr(selector, None);
+        let sel_ty = match sel.ty {
+            Ty::Error => None,
+            Ty::Of(id) if self.is_selector(id) => Some(id),
+            t => {
+                self.err(Code::E030, selector.span, |c| {
+                    format!(
+                        "the CASE selector must be an integer, bit string or enumeration, found {}",
+                        c.tyname(t)
+                    )
+                });
+                None
+            }
+        };
+        for arm in arms {
+            for label in &arm.labels {
+                match label {
+                    CaseLabel::Value(e) => {
+                        self.case_label(e, sel_ty);
+                    }
+                    CaseLabel::Range(lo, hi) => {
+                        let l = self.case_label(lo, sel_ty);
+                        let h = self.case_label(hi, sel_ty);
+                        if let (Some(l), Some(h)) = (l, h) {
+                            if l > h {
+                                self.err(Code::E033, lo.span.to(hi.span), |_| {
+                                    format!("the CASE range {l}..{h} is empty: its lower bound is greater than its upper bound")
+                                });
+                            }
+                        }
+                    }
+                }
+            }
+            self.stmts(&arm.body);
+        }
+        if let Some(body) = else_body {
+            self.stmts(body);
+        }
+    }
+
+    fn is_selector(&self, id: TypeId) -> bool {
+        let types = &self.model.types;
+        if let Some(e) = types.elem(id) {
+            return e.is_int() || e.is_bit();
+        }
+        matches!(types.get(id), TypeKind::Enum { .. })
+    }
+
+    /// A CASE label: a constant of the selector's type (E033). Its integer value.
+    fn case_label(&mut self, e: &Expr, sel: Option<TypeId>) -> Option<i128> {
+        let t = self.expr(e, sel);
+        if t.ty == Ty::Error {
+            return None;
+        }
+        let Some(v) = t.value.as_ref() else {
+            self.err(Code::E070, e.span, |c| {
+                format!(
+                    "the CASE label `{}` is not a constant",
+                    expr_text(c.interner, e)
+                )
+            });
+            return None;
+        };
+        let sel = sel?;
+        match fits(&self.model.types, &t, sel) {
+            Fit::Ok | Fit::NarrowedConstant => v.as_int(),
+            Fit::OutOfRange | Fit::OutOfSubrange { .. } => {
+                let shown = v.show();
+                self.err(Code::E033, e.span, |c| {
+                    format!(
+                        "the CASE label {shown} does not fit the selector of type {}",
+                        c.type_name(sel)
+                    )
+                });
+                None
+            }
+            Fit::Mismatch => {
+                self.err(Code::E033, e.span, |c| {
+                    format!(
+                        "a CASE label of type {} does not match the selector of type {}",
+                        c.tyname(t.ty),
+                        c.type_name(sel)
+                    )
+                });
+                None
+            }
+        }
+    }
+
+    fn for_loop(&mut self, var: Ident, from: &Expr, to: &Expr, by: Option<&Expr>, body: &[Stmt]) {
+        let ty = match self.var(var.sym) {
+            Some((v, own)) => {
+                self.check_write(v, own, var.span, Access::ForVar);
+                let is_int = self.model.types.elem(v.ty).is_some_and(|e| e.is_int());
+                if v.ty == TypeId::ERROR {
+                    None
+                } else if !is_int {
+                    self.err(Code::E062, var.span, |c| {
+                        format!(
+                            "the FOR variable `{}` must be an integer, found {}",
+                            c.name(var.sym),
+                            c.type_name(v.ty)
+                        )
+                    });
+                    None
+                } else {
+                    Some(v.ty)
+                }
+            }
+            None => {
+                self.err(Code::E020, var.span, |c| {
+                    format!("unknown variable `{}` {}", c.name(var.sym), c.where_())
+                });
+                None
+            }
+        };
+        for (e, what) in [
+            (Some(from), "start value"),
+            (Some(to), "end value"),
+            (by, "step"),
+        ] {
+            let Some(e) = e else { continue };
+            let t = self.expr(e, ty);
+            if let Some(ty) = ty {
+                if !matches!(
+                    fits(&self.model.types, &t, ty),
+                    Fit::Ok | Fit::NarrowedConstant
+                ) {
+                    self.err(Code::E062, e.span, |c| {
+                        format!(
+                            "the FOR {what} ({}) does not fit the variable `{}` of type {}",
+                            c.tyname(t.ty),
+                            c.name(var.sym),
+                            c.type_name(ty)
+                        )
+                    });
+                    continue;
+                }
+            }
+            if what == "step" && matches!(t.value, Some(Value::Int(0))) {
+                self.err(Code::E062, e.span, |_| {
+                    "the FOR step must not be zero".into()
+                });
+            }
+        }
+        self.loop_body(body);
+    }
+}

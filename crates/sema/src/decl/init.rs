@@ -1,0 +1,260 @@
+//! Initial values: folded and checked against the declared type (E039 for
+//! a wrong type, too many array elements or an unknown structure member,
+//! E038 for a constant outside a subrange, W003 for a narrowed constant).
+
+use super::Builder;
+use crate::convert::{fits, stored_value, Fit};
+use crate::ops::Ty;
+use crate::types::{Dim, TypeId, TypeKind};
+use crate::value::{ArrayInit, FieldInit, Init};
+use automat_base::{Code, Diagnostic, Span, Symbol};
+use automat_syntax::ast::{Ident, Initializer};
+use rustc_hash::FxHashMap;
+
+impl<'a> Builder<'a> {
+    /// Checks and folds the initial value of `name` (a variable, member or
+    /// type) of type `ty`. `None` after an error (reported).
+    pub(super) fn check_init(
+        &mut self,
+        init: &Initializer,
+        ty: TypeId,
+        scope: usize,
+        name: Ident,
+    ) -> Option<Init> {
+        if ty == TypeId::ERROR {
+            return None;
+        }
+        match init {
+            Initializer::Expr(e) => {
+                let t = self.fold(e, scope, Some(ty));
+                if t.ty == Ty::Error {
+                    return None;
+                }
+                let n = self.name(name.sym);
+                match fits(&self.types, &t, ty) {
+                    Fit::Ok => {}
+                    Fit::NarrowedConstant => {
+                        let (v, tn) = (show(&t), self.type_name(ty));
+                        self.emit(Diagnostic::warning(
+                            Code::W003,
+                            e.span,
+                            format!("the constant {v} is narrowed to {tn} for `{n}`"),
+                        ));
+                    }
+                    Fit::OutOfRange => {
+                        let (v, tn) = (show(&t), self.type_name(ty));
+                        self.emit(Diagnostic::error(
+                            Code::E039,
+                            e.span,
+                            format!("the initial value {v} does not fit `{n}` of type {tn}"),
+                        ));
+                        return None;
+                    }
+                    Fit::OutOfSubrange { lo, hi } => {
+                        let v = show(&t);
+                        self.emit(Diagnostic::error(
+                            Code::E038,
+                            e.span,
+                            format!(
+                                "the initial value {v} of `{n}` is outside its subrange {lo}..{hi}"
+                            ),
+                        ));
+                        return None;
+                    }
+                    Fit::Mismatch => {
+                        let from = crate::names::ty_name(&self.types, self.interner, t.ty);
+                        let tn = self.type_name(ty);
+                        self.emit(Diagnostic::error(
+                            Code::E039,
+                            e.span,
+                            format!(
+                                "an initial value of type {from} does not fit `{n}` of type {tn}"
+                            ),
+                        ));
+                        return None;
+                    }
+                }
+                stored_value(&self.types, &t, ty).map(Init::Value)
+            }
+            Initializer::Array { elems, span } => {
+                let (elem, dims) = match self.types.get(ty) {
+                    TypeKind::Array { elem, dims } => (*elem, dims.clone()),
+                    _ => return self.init_shape_error(*span, ty, name, "an array"),
+                };
+                self.check_array_init(elems, elem, &dims, *span, scope, name)
+            }
+            Initializer::Struct { fields, span } => {
+                self.check_struct_init(fields, ty, *span, scope, name)
+            }
+        }
+    }
+
+    fn init_shape_error(
+        &mut self,
+        span: Span,
+        ty: TypeId,
+        name: Ident,
+        what: &str,
+    ) -> Option<Init> {
+        let (n, tn) = (self.name(name.sym), self.type_name(ty));
+        self.emit(Diagnostic::error(
+            Code::E039,
+            span,
+            format!("{what} initial value does not fit `{n}` of type {tn}"),
+        ));
+        None
+    }
+
+    fn check_array_init(
+        &mut self,
+        elems: &[automat_syntax::ast::ArrayInitElem],
+        elem: TypeId,
+        dims: &[Dim],
+        span: Span,
+        scope: usize,
+        name: Ident,
+    ) -> Option<Init> {
+        // `[[1, 2], [3, 4]]` for a two-dimensional array: rows of the remaining dimensions.
+        let nested = dims.len() > 1
+            && elems
+                .iter()
+                .any(|e| matches!(e.value, Some(Initializer::Array { .. })));
+        let (item_ty, capacity) = if nested {
+            let rest = dims.get(1..).unwrap_or(&[]).to_vec();
+            let row = self.types.array(elem, rest);
+            (row, dims.first().map(|d| d.len()))
+        } else {
+            let star = dims.iter().any(|d| matches!(d, Dim::Star));
+            let total = dims.iter().fold(1u64, |acc, d| acc.saturating_mul(d.len()));
+            (elem, (!star).then_some(total))
+        };
+        let mut out = Vec::with_capacity(elems.len());
+        let mut count: u64 = 0;
+        let mut ok = true;
+        for el in elems {
+            let repeat = match &el.repeat {
+                None => 1,
+                Some(r) => match self.fold_int(r, scope, "a repetition count") {
+                    Some(n) if (0..=u32::MAX as i128).contains(&n) => n as u64,
+                    Some(n) => {
+                        self.emit(Diagnostic::error(
+                            Code::E039,
+                            r.span,
+                            format!("repetition count {n} is out of range"),
+                        ));
+                        ok = false;
+                        continue;
+                    }
+                    None => {
+                        ok = false;
+                        continue;
+                    }
+                },
+            };
+            count = count.saturating_add(repeat);
+            let value = match &el.value {
+                None => None,
+                Some(v) => match self.check_init(v, item_ty, scope, name) {
+                    Some(i) => Some(i),
+                    None => {
+                        ok = false;
+                        None
+                    }
+                },
+            };
+            out.push(ArrayInit { repeat, value });
+        }
+        if let Some(cap) = capacity {
+            if count > cap {
+                let n = self.name(name.sym);
+                self.emit(Diagnostic::error(
+                    Code::E039,
+                    span,
+                    format!("`{n}` has {cap} elements but its initial value gives {count}"),
+                ));
+                return None;
+            }
+        }
+        ok.then_some(Init::Array(out))
+    }
+
+    fn check_struct_init(
+        &mut self,
+        fields: &[automat_syntax::ast::FieldInit],
+        ty: TypeId,
+        span: Span,
+        scope: usize,
+        name: Ident,
+    ) -> Option<Init> {
+        // The members a structure initialiser may name: a structure's, or a
+        // function block's variables (CODESYS initialises instances this way).
+        let members: Vec<(Symbol, TypeId)> = match self.types.get(ty) {
+            TypeKind::Struct { members, .. } => members.iter().map(|m| (m.name, m.ty)).collect(),
+            TypeKind::Fb { pou, .. } => self.fb_members(*pou),
+            _ => return self.init_shape_error(span, ty, name, "a structure"),
+        };
+        let mut out = Vec::with_capacity(fields.len());
+        let mut seen: FxHashMap<Symbol, Span> = FxHashMap::default();
+        let mut ok = true;
+        for f in fields {
+            let Some(&(_, mty)) = members.iter().find(|(m, _)| *m == f.name.sym) else {
+                let (tn, fnm) = (self.type_name(ty), self.name(f.name.sym));
+                self.emit(Diagnostic::error(
+                    Code::E039,
+                    f.name.span,
+                    format!("`{tn}` has no member `{fnm}`"),
+                ));
+                ok = false;
+                continue;
+            };
+            if let Some(&first) = seen.get(&f.name.sym) {
+                let fnm = self.name(f.name.sym);
+                self.emit(
+                    Diagnostic::error(
+                        Code::E039,
+                        f.name.span,
+                        format!("member `{fnm}` is initialised twice"),
+                    )
+                    .with_label(first, "first initialised here"),
+                );
+                ok = false;
+                continue;
+            }
+            seen.insert(f.name.sym, f.name.span);
+            match self.check_init(&f.value, mty, scope, f.name) {
+                Some(v) => out.push(FieldInit {
+                    name: f.name.sym,
+                    value: v,
+                }),
+                None => ok = false,
+            }
+        }
+        ok.then_some(Init::Struct(out))
+    }
+
+    /// The variables of a function block (resolved on demand) with their types.
+    fn fb_members(&mut self, pou: crate::types::PouId) -> Vec<(Symbol, TypeId)> {
+        let Some(scope) = self.pous.get(pou.0 as usize).map(|p| p.scope) else {
+            return Vec::new();
+        };
+        let n = self.scopes.get(scope).map_or(0, |s| s.slots.len());
+        let mut out = Vec::with_capacity(n);
+        for i in 0..n as u32 {
+            let name = self
+                .scopes
+                .get(scope)
+                .and_then(|s| s.slots.get(i as usize))
+                .map(|s| s.name.sym);
+            if let (Some(name), super::fold::SlotInfo::Var { ty, .. }) =
+                (name, self.resolve_slot(scope, i))
+            {
+                out.push((name, ty));
+            }
+        }
+        out
+    }
+}
+
+fn show(t: &crate::ops::Typed) -> String {
+    t.value.as_ref().map_or_else(|| "?".into(), |v| v.show())
+}

@@ -1,0 +1,235 @@
+//! Variable sections and variable declarations (also used for structure
+//! members), with declaration-level recovery.
+
+use super::address::decode_address;
+use super::expr::is_identish;
+use super::Parser;
+use crate::ast::{Edge, Ident, Location, Retain, TypeSpec, VarBlock, VarDecl, VarKind};
+use crate::lexer::{Kw, Tok, Token};
+use automat_base::{Code, Diagnostic};
+
+impl Parser<'_> {
+    /// Whether the current token ends a run of declarations: where
+    /// declaration recovery stops.
+    pub(super) fn at_decl_sync(&self) -> bool {
+        match self.peek() {
+            Tok::Eof => true,
+            Tok::Kw(k) => {
+                k.is_decl_end() || k.is_item_start() || k.is_var_block() || k.starts_stmt()
+            }
+            _ => false,
+        }
+    }
+
+    /// Skips to just after the next `;` or to the next sync point.
+    pub(super) fn recover_decl(&mut self) {
+        while !self.at_decl_sync() {
+            if self.bump().tok == Tok::Semi {
+                return;
+            }
+        }
+    }
+
+    /// Requires the `;` that ends a declaration (see `end_stmt`).
+    pub(super) fn end_decl(&mut self, context: &str) {
+        if self.eat(Tok::Semi) {
+            return;
+        }
+        self.expected_word(";", context);
+        if !(self.newline_before_cur() || self.at_decl_sync()) {
+            self.recover_decl();
+        }
+    }
+
+    /// Reports a block whose closing keyword is missing.
+    pub(super) fn report_unclosed(&mut self, end: Kw, opener: Token) {
+        let open = self.text(opener).to_ascii_uppercase();
+        let d = Diagnostic::error(
+            Code::E005,
+            self.cur_span(),
+            format!(
+                "expected `{}` to close this `{open}`, found {}",
+                end.name(),
+                self.found()
+            ),
+        )
+        .with_label(self.tok_span(opener), format!("this `{open}` is not closed"));
+        self.emit_here(d);
+    }
+
+    /// `VAR_xxx [CONSTANT] [RETAIN|NON_RETAIN] decl; ... END_VAR`, at the keyword.
+    pub(super) fn var_block(&mut self) -> VarBlock {
+        let opener = self.bump();
+        let kind = match opener.tok {
+            Tok::Kw(Kw::VarInput) => VarKind::Input,
+            Tok::Kw(Kw::VarOutput) => VarKind::Output,
+            Tok::Kw(Kw::VarInOut) => VarKind::InOut,
+            Tok::Kw(Kw::VarExternal) => VarKind::External,
+            Tok::Kw(Kw::VarGlobal) => VarKind::Global,
+            Tok::Kw(Kw::VarTemp) => VarKind::Temp,
+            _ => VarKind::Local,
+        };
+        let mut constant = false;
+        let mut retain = Retain::Unspecified;
+        loop {
+            match self.peek() {
+                Tok::Kw(Kw::Constant) => constant = true,
+                Tok::Kw(Kw::Retain) => retain = Retain::Retain,
+                Tok::Kw(Kw::NonRetain) => retain = Retain::NonRetain,
+                _ => break,
+            }
+            self.bump();
+        }
+        let mut decls = Vec::new();
+        self.decl_list(opener, false, |p| p.var_decl(), &mut decls);
+        VarBlock {
+            kind,
+            constant,
+            retain,
+            decls,
+            span: self.span_from(opener.start),
+        }
+    }
+
+    /// Declarations until `END_VAR`; `decl` parses one at a name or `AT`.
+    /// `paths`: declarations may begin with `a.b` or `a[1]` (VAR_CONFIG).
+    pub(super) fn decl_list<T>(
+        &mut self,
+        opener: Token,
+        paths: bool,
+        mut decl: impl FnMut(&mut Self) -> Option<T>,
+        out: &mut Vec<T>,
+    ) {
+        loop {
+            let before = self.pos;
+            match self.peek() {
+                Tok::Kw(Kw::EndVar) => {
+                    self.bump();
+                    return;
+                }
+                // `x := 1;` cannot be a declaration: END_VAR is missing
+                // and the body has begun.
+                t if is_identish(t)
+                    && (matches!(self.nth(1), Tok::ColonEq | Tok::LParen)
+                        || (!paths && matches!(self.nth(1), Tok::LBracket | Tok::Dot))) =>
+                {
+                    return self.report_unclosed(Kw::EndVar, opener);
+                }
+                t if is_identish(t) || t == Tok::Kw(Kw::At) => {
+                    if let Some(d) = decl(self) {
+                        out.push(d);
+                    }
+                }
+                _ if self.at_decl_sync() => return self.report_unclosed(Kw::EndVar, opener),
+                _ => {
+                    self.expected("a variable declaration or `END_VAR`");
+                    self.recover_decl();
+                }
+            }
+            if self.pos == before {
+                self.bump();
+            }
+        }
+    }
+
+    /// `a, b AT %IX0.1 : INT R_EDGE := 5;` (names optional before `AT`).
+    /// Structure members nest through here (`STRUCT s : STRUCT ...`), so
+    /// the parts before and after the type are in separate functions.
+    pub(super) fn var_decl(&mut self) -> Option<VarDecl> {
+        let start = self.cur().start;
+        let (names, location) = self.decl_head()?;
+        let Some(ty) = self.type_spec() else {
+            self.recover_decl();
+            return None;
+        };
+        Some(self.decl_tail(start, names, location, ty))
+    }
+
+    /// The names, the location and the `:`.
+    #[inline(never)]
+    fn decl_head(&mut self) -> Option<(Vec<Ident>, Option<Location>)> {
+        let mut names = Vec::new();
+        if let Some(first) = self.ident_here() {
+            names.push(first);
+            while self.eat(Tok::Comma) {
+                match self.expect_ident("a variable name after `,`") {
+                    Some(n) => names.push(n),
+                    None => {
+                        self.recover_decl();
+                        return None;
+                    }
+                }
+            }
+        }
+        let location = if self.at_kw(Kw::At) {
+            self.location()
+        } else {
+            None
+        };
+        if !self.eat(Tok::Colon) {
+            let after = if location.is_some() { "the location" } else { "the variable name" };
+            self.expected(&format!("`:` after {after}"));
+            // `x INT;`: go on with the type as if the colon were there.
+            if !self.can_start_type() {
+                self.recover_decl();
+                return None;
+            }
+        }
+        Some((names, location))
+    }
+
+    /// The edge, the initial value and the `;`.
+    #[inline(never)]
+    fn decl_tail(
+        &mut self,
+        start: u32,
+        names: Vec<Ident>,
+        location: Option<Location>,
+        ty: TypeSpec,
+    ) -> VarDecl {
+        let edge = if self.eat_kw(Kw::REdge) {
+            Some(Edge::Rising)
+        } else if self.eat_kw(Kw::FEdge) {
+            Some(Edge::Falling)
+        } else {
+            None
+        };
+        let init = if self.eat(Tok::ColonEq) {
+            Some(self.initializer())
+        } else {
+            None
+        };
+        let span = self.span_from(start);
+        self.end_decl("after the declaration");
+        VarDecl {
+            names,
+            location,
+            ty,
+            edge,
+            init,
+            span,
+        }
+    }
+
+    /// `AT %IX0.1`, at `AT`. An invalid address is reported (E007) and dropped.
+    pub(super) fn location(&mut self) -> Option<Location> {
+        let at = self.bump();
+        let t = self.cur();
+        if t.tok != Tok::Addr {
+            self.expected("a direct address such as `%IX0.1` after `AT`");
+            return None;
+        }
+        self.bump();
+        let span = self.tok_span(t);
+        match decode_address(self.text(t), span) {
+            Ok(addr) => Some(Location {
+                addr,
+                span: self.span_from(at.start),
+            }),
+            Err(msg) => {
+                self.report(Diagnostic::error(Code::E007, span, msg));
+                None
+            }
+        }
+    }
+}

@@ -1,0 +1,187 @@
+//! Top-level items: POUs, TYPE blocks, global variable lists, and the
+//! recovery between them.
+
+use super::expr::is_identish;
+use super::Parser;
+use crate::ast::{Body, Item, Pou, PouKind, TypeBlock, TypeDecl, TypeSpec};
+use crate::lexer::{Kw, Tok};
+
+const END_PROGRAM: &[Kw] = &[Kw::EndProgram];
+const END_FUNCTION: &[Kw] = &[Kw::EndFunction];
+const END_FUNCTION_BLOCK: &[Kw] = &[Kw::EndFunctionBlock];
+
+fn is_pou_end(k: Kw) -> bool {
+    matches!(k, Kw::EndProgram | Kw::EndFunction | Kw::EndFunctionBlock)
+}
+
+impl Parser<'_> {
+    fn at_item_start(&self) -> bool {
+        matches!(self.peek(), Tok::Kw(k) if k.is_item_start() || k == Kw::VarGlobal)
+    }
+
+    pub(super) fn items(&mut self) -> Vec<Item> {
+        let mut items = Vec::new();
+        loop {
+            let before = self.pos;
+            match self.peek() {
+                Tok::Eof => break,
+                Tok::Kw(Kw::Program | Kw::Function | Kw::FunctionBlock) => {
+                    if let Some(pou) = self.pou() {
+                        items.push(Item::Pou(pou));
+                    }
+                }
+                Tok::Kw(Kw::Type) => items.push(Item::Types(self.type_block())),
+                Tok::Kw(Kw::VarGlobal) => items.push(Item::Globals(self.var_block())),
+                Tok::Kw(Kw::Configuration) => {
+                    if let Some(c) = self.configuration() {
+                        items.push(Item::Config(c));
+                    }
+                }
+                _ => {
+                    self.expected("`PROGRAM`, `FUNCTION`, `FUNCTION_BLOCK`, `TYPE`, `VAR_GLOBAL` or `CONFIGURATION`");
+                    self.bump();
+                    while !(self.at_item_start() || self.at_eof()) {
+                        self.bump();
+                    }
+                }
+            }
+            if self.pos == before {
+                self.bump();
+            }
+        }
+        items
+    }
+
+    /// FUNCTION, FUNCTION_BLOCK or PROGRAM, at its keyword. `None` when it
+    /// has no name (the error was reported and its text consumed).
+    fn pou(&mut self) -> Option<Pou> {
+        let opener = self.bump();
+        let (kind, end, frame, what) = match opener.tok {
+            Tok::Kw(Kw::Function) => (PouKind::Function, Kw::EndFunction, END_FUNCTION, "function"),
+            Tok::Kw(Kw::FunctionBlock) => (
+                PouKind::FunctionBlock,
+                Kw::EndFunctionBlock,
+                END_FUNCTION_BLOCK,
+                "function block",
+            ),
+            _ => (PouKind::Program, Kw::EndProgram, END_PROGRAM, "program"),
+        };
+        let name = self.expect_ident(&format!("the name of the {what}"));
+        let return_type = if kind == PouKind::Function && self.eat(Tok::Colon) {
+            self.type_spec()
+        } else {
+            None
+        };
+        let mut var_blocks = Vec::new();
+        while let Tok::Kw(k) = self.peek() {
+            match k {
+                Kw::VarAccess | Kw::VarConfig => {
+                    let msg = format!(
+                        "`{}` is only allowed in a CONFIGURATION, not in a {what}",
+                        k.name()
+                    );
+                    self.error_here(msg);
+                    self.var_block();
+                }
+                k if k.is_var_block() => var_blocks.push(self.var_block()),
+                _ => break,
+            }
+        }
+        self.frames.push(frame);
+        let body = self.stmt_list(false);
+        self.frames.pop();
+        if !self.eat_kw(end) {
+            self.report_unclosed(end, opener);
+            match self.peek() {
+                // A misspelt end (`END_FUNCTION` closing a PROGRAM) closes it.
+                Tok::Kw(k) if is_pou_end(k) => {
+                    self.bump();
+                }
+                // Skip what the body could not parse, up to this POU's end.
+                _ => {
+                    while !(self.at_item_start() || self.at_eof()) {
+                        if self.bump().tok == Tok::Kw(end) {
+                            break;
+                        }
+                    }
+                }
+            }
+        }
+        Some(Pou {
+            kind,
+            name: name?,
+            return_type,
+            var_blocks,
+            body: Body::St(body),
+            span: self.span_from(opener.start),
+        })
+    }
+
+    /// `TYPE decl; ... END_TYPE`, at `TYPE`.
+    fn type_block(&mut self) -> TypeBlock {
+        let opener = self.bump();
+        let mut decls = Vec::new();
+        loop {
+            let before = self.pos;
+            match self.peek() {
+                Tok::Kw(Kw::EndType) => {
+                    self.bump();
+                    break;
+                }
+                t if is_identish(t) => {
+                    if let Some(d) = self.type_decl() {
+                        decls.push(d);
+                    }
+                }
+                _ if self.at_decl_sync() => {
+                    self.report_unclosed(Kw::EndType, opener);
+                    break;
+                }
+                _ => {
+                    self.expected("a type declaration or `END_TYPE`");
+                    self.recover_decl();
+                }
+            }
+            if self.pos == before {
+                self.bump();
+            }
+        }
+        TypeBlock {
+            decls,
+            span: self.span_from(opener.start),
+        }
+    }
+
+    /// `Name : spec [:= init];` (the `;` after `END_STRUCT` is optional).
+    fn type_decl(&mut self) -> Option<TypeDecl> {
+        let start = self.cur().start;
+        let name = self.ident_here()?;
+        if !self.eat(Tok::Colon) {
+            self.expected("`:` after the type name");
+            if !self.can_start_type() {
+                self.recover_decl();
+                return None;
+            }
+        }
+        let Some(spec) = self.type_spec() else {
+            self.recover_decl();
+            return None;
+        };
+        let init = if self.eat(Tok::ColonEq) {
+            Some(self.initializer())
+        } else {
+            None
+        };
+        let span = self.span_from(start);
+        let is_struct = matches!(spec, TypeSpec::Struct { .. });
+        if !(is_struct && init.is_none() && !self.at(Tok::Semi)) {
+            self.end_decl("after the type declaration");
+        }
+        Some(TypeDecl {
+            name,
+            spec,
+            init,
+            span,
+        })
+    }
+}
