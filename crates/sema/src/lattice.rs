@@ -88,7 +88,7 @@ pub fn implicit(from: Elem, to: Elem) -> bool {
 }
 
 /// The least upper bound of two elementary types: the narrowest type both
-/// convert to implicitly, if any.
+/// convert to implicitly, if any (for two integers, the narrowest integer).
 pub fn lub(a: Elem, b: Elem) -> Option<Elem> {
     let table = LUB.get_or_init(build_lub);
     table[a as usize][b as usize]
@@ -100,11 +100,16 @@ fn build_lub() -> [[Option<Elem>; 25]; 25] {
     let mut t = [[None; 25]; 25];
     for a in Elem::ALL {
         for b in Elem::ALL {
-            let uppers: Vec<Elem> = Elem::ALL
+            let mut uppers: Vec<Elem> = Elem::ALL
                 .iter()
                 .copied()
                 .filter(|&c| implicit(a, c) && implicit(b, c))
                 .collect();
+            // Two integers meet in an integer when one exists (INT ⊔ UINT is
+            // DINT, although REAL also bounds both and DINT ⋢ REAL).
+            if a.is_int() && b.is_int() && uppers.iter().any(|c| c.is_int()) {
+                uppers.retain(|c| c.is_int());
+            }
             // The least one converts to every other upper bound.
             t[a as usize][b as usize] = uppers
                 .iter()

@@ -14,8 +14,9 @@ const SAMPLES: &[(&str, &str)] = &[
     ("plant.st", include_str!("samples/plant.st")),
 ];
 
-/// Bytes parsed in total (keeps the test within a few seconds in debug).
-const BUDGET: usize = 24 << 20;
+/// Bytes of corpus mutants parsed in total (keeps the test within a few
+/// seconds in a debug build however large the corpus grows).
+const BUDGET: usize = 16 << 20;
 
 /// xorshift64*: small, seeded, good enough to pick positions.
 struct Rng(u64);
@@ -218,50 +219,62 @@ fn mutants(text: &str, rng: &mut Rng, rounds: usize) -> Vec<(String, String)> {
     out
 }
 
-fn deep(text: &str, rng: &mut Rng) -> Vec<(String, String)> {
-    let nests: &[(&str, &str)] = &[
-        ("(", ")"),
-        ("[", "]"),
-        ("f(", ")"),
-        ("a[", "]"),
-        ("-", ""),
-        ("NOT ", ""),
-        ("IF x THEN ", " END_IF;"),
-        ("CASE x OF 1: ", " END_CASE;"),
-        ("WHILE x DO ", " END_WHILE;"),
-        ("REPEAT ", " UNTIL x END_REPEAT;"),
-        ("ARRAY [1..2] OF ", ""),
-        ("STRUCT a : ", " END_STRUCT;"),
-        ("(a := ", ")"),
-        ("(*", ""),
-        ("{", ""),
-    ];
-    let mut out = Vec::new();
-    for (open, close) in nests {
-        let at = rng.below(text.len() + 1);
-        let n = 10_000;
-        let ins = format!("{}x{}", open.repeat(n), close.repeat(n / 2));
-        out.push((format!("10000 × {open:?} at {at}"), splice(text, at, 0, &ins)));
-        out.push((format!("10000 × {open:?} alone"), open.repeat(n)));
-    }
-    out
+/// Openers (and closers) that nest: statements, expressions, types,
+/// initial values, comments.
+const NESTS: &[(&str, &str)] = &[
+    ("(", ")"),
+    ("[", "]"),
+    ("f(", ")"),
+    ("a[", "]"),
+    ("-", ""),
+    ("NOT ", ""),
+    ("IF x THEN ", " END_IF;"),
+    ("CASE x OF 1: ", " END_CASE;"),
+    ("WHILE x DO ", " END_WHILE;"),
+    ("REPEAT ", " UNTIL x END_REPEAT;"),
+    ("ARRAY [1..2] OF ", ""),
+    ("STRUCT a : ", " END_STRUCT;"),
+    ("(a := ", ")"),
+    ("(*", ""),
+    ("{", ""),
+];
+
+/// One kind of deep nesting (far past the parser's limit) inserted at a
+/// random place; half of the closers are missing.
+fn deep(text: &str, rng: &mut Rng, kind: usize) -> (String, String) {
+    let (open, close) = NESTS[kind % NESTS.len()];
+    let at = rng.below(text.len() + 1);
+    let n = 2_000;
+    let ins = format!("{}x{}", open.repeat(n), close.repeat(n / 2));
+    (format!("{n} × {open:?} at {at}"), splice(text, at, 0, &ins))
 }
 
 #[test]
 fn mangled_inputs_never_panic_or_hang() {
     let inputs = inputs();
-    let total: usize = inputs.iter().map(|(_, t)| t.len().max(1)).sum();
+    let corpus: usize = inputs[SAMPLES.len()..].iter().map(|(_, t)| t.len().max(1)).sum();
     let mut rng = Rng(0x5EED_1EC6_1131_0003);
     let mut parses = 0usize;
     let mut slowest = (Duration::ZERO, String::new());
-    for (name, text) in &inputs {
-        // Share the budget by size, with at least a few rounds per file.
-        let rounds = (BUDGET / total.max(1) / 2).clamp(8, 400);
+    for (i, (name, text)) in inputs.iter().enumerate() {
+        // The samples get many rounds; the corpus shares the budget by size,
+        // with at least a few rounds per file.
+        let rounds = if i < SAMPLES.len() {
+            300
+        } else {
+            (BUDGET / corpus.max(1) / 2).clamp(4, 300)
+        };
         assert!(check(name, "original", text) < Duration::from_secs(5));
         let mut all = mutants(text, &mut rng, rounds);
-        all.extend(deep(text, &mut rng));
+        for _ in 0..2 {
+            let kind = rng.below(NESTS.len());
+            all.push(deep(text, &mut rng, kind));
+        }
         for (what, m) in &all {
             let took = check(name, what, m);
+            if std::env::var("MANGLED_TRACE").is_ok() && took > Duration::from_millis(20) {
+                eprintln!("{took:?} {name}: {what} ({} bytes)", m.len());
+            }
             parses += 1;
             if took > slowest.0 {
                 slowest = (took, format!("{name}: {what}"));
@@ -276,6 +289,20 @@ fn mangled_inputs_never_panic_or_hang() {
         slowest.1
     );
     assert!(parses >= 3 * 8);
+}
+
+#[test]
+fn every_kind_of_deep_nesting_alone_and_in_every_sample() {
+    let mut rng = Rng(7);
+    for (open, _) in NESTS {
+        check("nesting", open, &open.repeat(10_000));
+    }
+    for (name, text) in SAMPLES {
+        for kind in 0..NESTS.len() {
+            let (what, m) = deep(text, &mut rng, kind);
+            check(name, &what, &m);
+        }
+    }
 }
 
 #[test]

@@ -302,6 +302,14 @@ impl<'m> Checker<'m> {
         }
         for (i, a) in args.iter().enumerate() {
             match order.get(i) {
+                Some(p) if p.section == Section::Output => {
+                    // A positional output is bound like `name => var`.
+                    let as_out = Arg {
+                        dir: ArgDir::Out,
+                        ..a.clone()
+                    };
+                    self.bind(pou, p, &as_out)
+                }
                 Some(p) => self.bind(pou, p, a),
                 None => {
                     if let Some(v) = &a.value {

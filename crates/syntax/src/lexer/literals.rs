@@ -175,6 +175,13 @@ impl Lexer<'_> {
                 &self.text[start..prefix_end]
             ))),
         };
+        let res = match res {
+            Ok(kind) if prefix_len <= MAX_WORD => {
+                let whole = &self.text[start..self.pos];
+                literal::check_typed(&buf[..prefix_len], whole, &kind).map(|()| kind)
+            }
+            other => other,
+        };
         self.finish(start, res, Some(ty), Some(body_start));
     }
 

@@ -149,8 +149,12 @@ impl Kw {
     #[inline]
     pub fn lookup_hashed(word: &[u8], h: u32) -> Option<Kw> {
         let i = usize::from(KW_TABLE[kw_slot(h)]).checked_sub(1)?;
-        let kw = *Kw::ALL.get(i)?;
-        kw.text().eq_ignore_ascii_case(word).then_some(kw)
+        let text = Kw::TEXTS.get(i)?;
+        if text.eq_ignore_ascii_case(word) {
+            Kw::ALL.get(i).copied()
+        } else {
+            None
+        }
     }
 }
 

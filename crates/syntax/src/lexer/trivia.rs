@@ -7,7 +7,10 @@ impl Lexer<'_> {
     pub(super) fn skip_trivia(&mut self) {
         loop {
             match (self.at(self.pos), self.at(self.pos + 1)) {
-                (b' ' | b'\t' | b'\r' | b'\n' | 0x0B | 0x0C, _) => self.pos += 1,
+                (c, _) if super::is_space(c) => {
+                    let rest = &self.b[self.pos..];
+                    self.pos += rest.iter().position(|&c| !super::is_space(c)).unwrap_or(rest.len());
+                }
                 (b'(', b'*') => self.nested_comment(),
                 (b'/', b'*') => self.c_comment(),
                 (b'/', b'/') => self.line_comment(),

@@ -102,7 +102,11 @@ pub fn signed_number(text: &str) -> Result<LitKind, LitError> {
 
 /// Digits with single underscores between them, as IEC allows.
 fn check_underscores(text: &str, digits: &str) -> Result<(), LitError> {
-    if digits.is_empty() || digits.starts_with('_') || digits.ends_with('_') {
+    if digits.is_empty()
+        || digits.starts_with('_')
+        || digits.ends_with('_')
+        || digits.contains("__")
+    {
         return Err(LitError::Malformed(format!(
             "malformed number `{text}`: expected digits"
         )));
@@ -172,6 +176,7 @@ fn real(text: &str) -> Result<LitKind, LitError> {
         !s.is_empty()
             && !s.starts_with('_')
             && !s.ends_with('_')
+            && !s.contains("__")
             && s.bytes().all(|b| b.is_ascii_digit() || b == b'_')
     };
     let exp_ok = exponent.is_none_or(|e| {
@@ -188,6 +193,43 @@ fn real(text: &str) -> Result<LitKind, LitError> {
             "real literal `{text}` is too large for LREAL"
         ))),
         Err(_) => Err(LitError::Malformed(format!("malformed real number `{text}`"))),
+    }
+}
+
+/// The range of an elementary type named by an upper-cased prefix, for
+/// typed literals: `SINT#300` does not fit. `None` for other names (user
+/// types, REAL, strings), whose literals the checker types.
+fn int_range(upper: &[u8]) -> Option<(i128, i128)> {
+    Some(match upper {
+        b"SINT" => (i8::MIN.into(), i8::MAX.into()),
+        b"INT" => (i16::MIN.into(), i16::MAX.into()),
+        b"DINT" => (i32::MIN.into(), i32::MAX.into()),
+        b"LINT" => (i64::MIN.into(), i64::MAX.into()),
+        b"USINT" | b"BYTE" => (0, u8::MAX.into()),
+        b"UINT" | b"WORD" => (0, u16::MAX.into()),
+        b"UDINT" | b"DWORD" => (0, u32::MAX.into()),
+        b"ULINT" | b"LWORD" => (0, u64::MAX.into()),
+        b"BOOL" => (0, 1),
+        _ => return None,
+    })
+}
+
+/// Checks a decoded typed literal against its elementary type (E006).
+pub fn check_typed(upper_ty: &[u8], whole: &str, kind: &LitKind) -> Result<(), LitError> {
+    let name = String::from_utf8_lossy(upper_ty);
+    match kind {
+        LitKind::Int(v) => match int_range(upper_ty) {
+            Some((lo, hi)) if *v < lo || *v > hi => Err(LitError::OutOfRange(format!(
+                "literal `{whole}` does not fit in {name} ({lo}..{hi})"
+            ))),
+            _ => Ok(()),
+        },
+        LitKind::Real(r) if upper_ty == b"REAL" && r.abs() > f64::from(f32::MAX) => {
+            Err(LitError::OutOfRange(format!(
+                "literal `{whole}` does not fit in REAL"
+            )))
+        }
+        _ => Ok(()),
     }
 }
 
@@ -264,6 +306,28 @@ mod tests {
             signed_number("-9223372036854775809"),
             Err(LitError::OutOfRange(_))
         ));
+    }
+
+    #[test]
+    fn typed_ranges() {
+        let fits = |ty: &str, v: i128| check_typed(ty.as_bytes(), "x", &LitKind::Int(v)).is_ok();
+        assert!(fits("SINT", -128) && fits("SINT", 127));
+        assert!(!fits("SINT", 128) && !fits("SINT", -129));
+        assert!(!fits("USINT", -1) && fits("USINT", 255));
+        assert!(!fits("INT", 40000) && !fits("BYTE", 256) && !fits("INT", 65536));
+        assert!(fits("ULINT", u64::MAX as i128) && !fits("LINT", u64::MAX as i128));
+        assert!(!fits("BOOL", 2) && fits("BOOL", 1));
+        assert!(fits("MyType", 1_000_000));
+        assert!(check_typed(b"REAL", "x", &LitKind::Real(1e39)).is_err());
+        assert!(check_typed(b"LREAL", "x", &LitKind::Real(1e39)).is_ok());
+    }
+
+    #[test]
+    fn double_underscores_are_malformed() {
+        assert!(matches!(number("1__000"), Err(LitError::Malformed(_))));
+        assert!(matches!(number("16#F__F"), Err(LitError::Malformed(_))));
+        assert!(matches!(number("1.0__5"), Err(LitError::Malformed(_))));
+        assert_eq!(number("1_000"), Ok(LitKind::Int(1000)));
     }
 
     #[test]

@@ -7,7 +7,7 @@
 use super::address::{decode_address, decode_partial};
 use super::Parser;
 use crate::ast::{
-    Arg, ArgDir, BinaryOp, Expr, ExprKind, LitKind, Literal, UnaryOp,
+    Arg, ArgDir, BinaryOp, Expr, ExprKind, Ident, LitKind, Literal, UnaryOp,
 };
 use crate::lexer::{Kw, Tok};
 use automat_base::{Code, Diagnostic, Span};
@@ -81,7 +81,22 @@ impl Parser<'_> {
             | Tok::Minus
             | Tok::Plus
             | Tok::Kw(Kw::Not | Kw::True | Kw::False) => true,
-            Tok::Kw(k) => k.is_contextual(),
+            Tok::Kw(k) => k.is_contextual() || self.at_operator_function(),
+            _ => false,
+        }
+    }
+
+    /// `AND(a, b)`, `MOD(x, 3)`, `NOT(IN := x)`: the standard functions
+    /// named like operators (OpenPLC writes FBD blocks this way), called
+    /// where an operand is expected.
+    fn at_operator_function(&self) -> bool {
+        match self.peek() {
+            Tok::Kw(Kw::And | Kw::Or | Kw::Xor | Kw::Mod) => self.nth(1) == Tok::LParen,
+            // `NOT(x)` is the operator on a parenthesis; only a formal
+            // argument makes it a call.
+            Tok::Kw(Kw::Not) => {
+                self.nth(1) == Tok::LParen && is_identish(self.nth(2)) && self.nth(3) == Tok::ColonEq
+            }
             _ => false,
         }
     }
@@ -122,7 +137,7 @@ impl Parser<'_> {
 
     /// Unary operators, then `**`.
     fn unary(&mut self) -> Expr {
-        if unop(self.peek()).is_some() {
+        if unop(self.peek()).is_some() && !self.at_operator_function() {
             return self.prefixed();
         }
         let lhs = self.postfix();
@@ -386,6 +401,13 @@ impl Parser<'_> {
                         ExprKind::Error
                     }
                 }
+            }
+            Tok::Kw(_) if self.at_operator_function() => {
+                self.bump();
+                ExprKind::Name(Ident {
+                    sym: self.interner.intern(self.text(t)),
+                    span,
+                })
             }
             _ => match self.ident_here() {
                 Some(id) => ExprKind::Name(id),
