@@ -23,7 +23,8 @@ use automat_syntax::ast::{self, PouKind};
 use rustc_hash::FxHashMap;
 use std::rc::Rc;
 
-/// Deepest expression nesting typed (deeper ones are reported, not overflowed).
+/// Deepest expression nesting typed, and deepest statement nesting checked
+/// (deeper ones are reported, not overflowed).
 pub const MAX_EXPR_DEPTH: u32 = 256;
 
 /// Where names are looked up.
@@ -74,7 +75,10 @@ pub struct Checker<'m> {
     silent: bool,
     std_cache: FxHashMap<Symbol, Option<Rc<Sig>>>,
     pub(crate) loop_depth: u32,
+    /// Nesting of the expression being typed.
     pub(crate) depth: u32,
+    /// Nesting of the statement being checked.
+    pub(crate) stmt_depth: u32,
 }
 
 impl<'m> Checker<'m> {
@@ -93,6 +97,7 @@ impl<'m> Checker<'m> {
             std_cache: FxHashMap::default(),
             loop_depth: 0,
             depth: 0,
+            stmt_depth: 0,
         }
     }
 
@@ -101,6 +106,7 @@ impl<'m> Checker<'m> {
         self.scope = Scope::Pou(id);
         self.loop_depth = 0;
         self.depth = 0;
+        self.stmt_depth = 0;
         match &pou.body {
             ast::Body::St(stmts) => self.stmts(stmts),
         }

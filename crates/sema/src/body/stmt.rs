@@ -18,15 +18,15 @@ impl<'m> Checker<'m> {
     }
 
     fn stmt(&mut self, s: &Stmt) {
-        if self.depth >= MAX_EXPR_DEPTH {
+        if self.stmt_depth >= MAX_EXPR_DEPTH {
             self.err(Code::E070, s.span, |_| {
                 "statements nested too deeply".into()
             });
             return;
         }
-        self.depth += 1;
+        self.stmt_depth += 1;
         self.stmt_inner(s);
-        self.depth -= 1;
+        self.stmt_depth -= 1;
     }
 
     fn stmt_inner(&mut self, s: &Stmt) {
