@@ -26,6 +26,7 @@
 
 pub mod code;
 pub mod symbols;
+pub mod verify;
 
 pub use symbols::{Field, SymbolEntry, SymbolTable, SymbolType};
 
@@ -126,4 +127,21 @@ pub struct Program {
     pub funcs: Vec<code::Func>,
     /// Indexed by the site numbers that checking instructions carry.
     pub sites: Vec<Site>,
+}
+
+impl Program {
+    /// The verifier's limits for this program.
+    pub fn limits(&self) -> verify::Limits {
+        verify::Limits {
+            image_size: self.image_size,
+            funcs: self.funcs.len() as u32,
+            sites: self.sites.len() as u32,
+        }
+    }
+
+    /// Verifies every function.
+    pub fn verify(&self) -> Result<(), verify::VerifyError> {
+        let lim = self.limits();
+        self.funcs.iter().try_for_each(|f| verify::verify(f, lim))
+    }
 }

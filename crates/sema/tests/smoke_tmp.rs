@@ -134,3 +134,36 @@ fn timing_tmp() {
     }
     println!("check only: {:.1} ms, {:.0} lines/s", best * 1e3, lines as f64 / best);
 }
+
+#[test]
+#[ignore]
+fn timing_breakdown_tmp() {
+    let files = gen::project(400);
+    let mut map = SourceMap::new();
+    for (n, t) in &files { map.add(n.clone(), t.clone()); }
+    for _ in 0..5 {
+        let t0 = std::time::Instant::now();
+        let mut interner = Interner::new();
+        let units: Vec<_> = map.files().map(|(id, f)| automat_syntax::parse(id, &f.text, &mut interner).unit).collect();
+        let t1 = std::time::Instant::now();
+        let a = automat_sema::check(&units, &mut interner);
+        let t2 = std::time::Instant::now();
+        drop(a);
+        let t3 = std::time::Instant::now();
+        drop(units);
+        let t4 = std::time::Instant::now();
+        drop(interner);
+        let t5 = std::time::Instant::now();
+        println!("parse {:.1} check {:.1} drop-model {:.1} drop-ast {:.1} drop-interner {:.1}",
+            (t1-t0).as_secs_f64()*1e3, (t2-t1).as_secs_f64()*1e3, (t3-t2).as_secs_f64()*1e3, (t4-t3).as_secs_f64()*1e3, (t5-t4).as_secs_f64()*1e3);
+    }
+}
+
+#[test]
+fn sizes_tmp() {
+    use automat_sema::*;
+    println!("Var {} Typed {} Value {} Init {} TypeKind {} Pou {} DirectAddress {}",
+        std::mem::size_of::<model::Var>(), std::mem::size_of::<Typed>(), std::mem::size_of::<value::Value>(),
+        std::mem::size_of::<value::Init>(), std::mem::size_of::<types::TypeKind>(), std::mem::size_of::<model::Pou>(),
+        std::mem::size_of::<automat_syntax::ast::DirectAddress>());
+}

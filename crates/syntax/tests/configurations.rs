@@ -63,7 +63,10 @@ fn full_configuration() {
         .collect();
     assert_eq!(
         tasks,
-        vec!["Fast(INTERVAL=T#10000000ns,PRIORITY=1)", "Trig(SINGLE=start,PRIORITY=5)"]
+        vec![
+            "Fast(INTERVAL=T#10000000ns,PRIORITY=1)",
+            "Trig(SINGLE=start,PRIORITY=5)"
+        ]
     );
     let main = &r.programs[0];
     assert_eq!(main.retain, Retain::Retain);
@@ -103,7 +106,10 @@ fn full_configuration() {
             format!(
                 "{} {} {} {}",
                 out.expr(&v.path),
-                v.location.as_ref().map(|l| addr(&l.addr)).unwrap_or_default(),
+                v.location
+                    .as_ref()
+                    .map(|l| addr(&l.addr))
+                    .unwrap_or_default(),
                 out.ty(&v.ty),
                 v.init.as_ref().map(|i| out.init(i)).unwrap_or_default()
             )

@@ -22,7 +22,10 @@ fn st_files(dir: &Path, out: &mut Vec<PathBuf>) {
 }
 
 fn is_syntax_code(code: &str) -> bool {
-    matches!(code, "E001" | "E002" | "E003" | "E004" | "E005" | "E006" | "E007")
+    matches!(
+        code,
+        "E001" | "E002" | "E003" | "E004" | "E005" | "E006" | "E007"
+    )
 }
 
 /// `line -> codes` announced by `//~` comments.
@@ -65,14 +68,23 @@ fn corpus_syntax_diagnostics_match_the_annotations() {
         let mut got: BTreeMap<u32, Vec<String>> = BTreeMap::new();
         for d in &parsed.diagnostics {
             let line = sf.line_col(d.span.start).0;
-            got.entry(line).or_default().push(d.code.as_str().to_string());
+            got.entry(line)
+                .or_default()
+                .push(d.code.as_str().to_string());
         }
         let want = expected(&text);
         if got != want {
             let detail: Vec<String> = parsed
                 .diagnostics
                 .iter()
-                .map(|d| format!("  {}:{} {}", sf.line_col(d.span.start).0, d.code.as_str(), d.message))
+                .map(|d| {
+                    format!(
+                        "  {}:{} {}",
+                        sf.line_col(d.span.start).0,
+                        d.code.as_str(),
+                        d.message
+                    )
+                })
                 .collect();
             failures.push(format!(
                 "{}: expected {:?}, got {:?}\n{}",

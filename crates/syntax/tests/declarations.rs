@@ -4,13 +4,18 @@ use common::{decls, ok, types};
 
 #[test]
 fn pous_of_every_kind() {
-    let out = ok("FUNCTION f : INT\nVAR_INPUT a : INT; END_VAR\nf := a;\nEND_FUNCTION\n\
+    let out = ok(
+        "FUNCTION f : INT\nVAR_INPUT a : INT; END_VAR\nf := a;\nEND_FUNCTION\n\
                   FUNCTION g\nEND_FUNCTION\n\
                   FUNCTION_BLOCK fb\nVAR_OUTPUT q : BOOL; END_VAR\nEND_FUNCTION_BLOCK\n\
-                  PROGRAM main\nEND_PROGRAM\n");
+                  PROGRAM main\nEND_PROGRAM\n",
+    );
     let f = out.pou(0);
     assert_eq!((f.kind, out.name(f.name)), (PouKind::Function, "f".into()));
-    assert_eq!(f.return_type.as_ref().map(|t| out.ty(t)), Some("INT".into()));
+    assert_eq!(
+        f.return_type.as_ref().map(|t| out.ty(t)),
+        Some("INT".into())
+    );
     assert_eq!(out.stmts(out.body(0)), "[f := a]");
     assert_eq!(out.pou(1).return_type, None);
     assert_eq!(out.pou(2).kind, PouKind::FunctionBlock);
@@ -153,11 +158,15 @@ fn type_blocks() {
 
 #[test]
 fn top_level_globals() {
-    let out = ok("VAR_GLOBAL\n  g : INT;\nEND_VAR\nVAR_GLOBAL CONSTANT\n  N : INT := 10;\nEND_VAR\n");
+    let out =
+        ok("VAR_GLOBAL\n  g : INT;\nEND_VAR\nVAR_GLOBAL CONSTANT\n  N : INT := 10;\nEND_VAR\n");
     let [Item::Globals(a), Item::Globals(b)] = out.unit.items.as_slice() else {
         panic!("{:?}", out.unit.items)
     };
-    assert_eq!((a.kind, a.constant, a.decls.len()), (VarKind::Global, false, 1));
+    assert_eq!(
+        (a.kind, a.constant, a.decls.len()),
+        (VarKind::Global, false, 1)
+    );
     assert_eq!((b.kind, b.constant), (VarKind::Global, true));
     assert_eq!(out.decl(&b.decls[0]), "N : INT := 10;");
 }
@@ -166,7 +175,10 @@ fn top_level_globals() {
 fn declaration_spans() {
     let out = ok("PROGRAM p\nVAR\n  a, b : INT := 5; (* c *)\nEND_VAR\nEND_PROGRAM");
     let blk = &out.pou(0).var_blocks[0];
-    assert_eq!(out.text(blk.span), "VAR\n  a, b : INT := 5; (* c *)\nEND_VAR");
+    assert_eq!(
+        out.text(blk.span),
+        "VAR\n  a, b : INT := 5; (* c *)\nEND_VAR"
+    );
     assert_eq!(out.text(blk.decls[0].span), "a, b : INT := 5");
     let loc = ok("PROGRAM p VAR x AT %IX1.2 : BOOL; END_VAR END_PROGRAM");
     let d = &loc.pou(0).var_blocks[0].decls[0];

@@ -187,14 +187,19 @@ fn lexical_errors_do_not_cascade_into_syntax_errors() {
 
 #[test]
 fn top_level_recovery_skips_to_the_next_pou() {
-    let out = parse("garbage 1 2 3;\nPROGRAM a END_PROGRAM\n)))\nFUNCTION_BLOCK b END_FUNCTION_BLOCK");
+    let out =
+        parse("garbage 1 2 3;\nPROGRAM a END_PROGRAM\n)))\nFUNCTION_BLOCK b END_FUNCTION_BLOCK");
     assert_eq!(out.diags.len(), 2);
     assert_eq!(out.unit.items.len(), 2);
 }
 
 #[test]
 fn deep_nesting_is_an_error_not_a_crash() {
-    let deep = format!("PROGRAM p\nx := {}1{};\nEND_PROGRAM", "(".repeat(10_000), ")".repeat(10_000));
+    let deep = format!(
+        "PROGRAM p\nx := {}1{};\nEND_PROGRAM",
+        "(".repeat(10_000),
+        ")".repeat(10_000)
+    );
     let msgs = messages(&deep);
     assert_eq!(msgs, vec!["nesting too deep: more than 256 levels"]);
 
@@ -211,19 +216,23 @@ fn deep_nesting_is_an_error_not_a_crash() {
     assert_eq!(parse(&unary).diags.len(), 1);
     let not = format!("PROGRAM p\nx := {}a;\nEND_PROGRAM", "NOT ".repeat(5000));
     assert_eq!(parse(&not).diags.len(), 1);
-    let arrays = format!(
-        "TYPE T : {}INT; END_TYPE",
-        "ARRAY [1..2] OF ".repeat(2000)
-    );
+    let arrays = format!("TYPE T : {}INT; END_TYPE", "ARRAY [1..2] OF ".repeat(2000));
     assert_eq!(parse(&arrays).diags.len(), 1);
-    let inits = format!("PROGRAM p VAR x : T := {}; END_VAR END_PROGRAM", "[".repeat(3000));
+    let inits = format!(
+        "PROGRAM p VAR x : T := {}; END_VAR END_PROGRAM",
+        "[".repeat(3000)
+    );
     assert!(!parse(&inits).diags.is_empty());
 }
 
 #[test]
 fn nesting_up_to_the_limit_is_fine() {
     let n = 200;
-    let src = format!("PROGRAM p\nx := {}1{};\nEND_PROGRAM", "(".repeat(n), ")".repeat(n));
+    let src = format!(
+        "PROGRAM p\nx := {}1{};\nEND_PROGRAM",
+        "(".repeat(n),
+        ")".repeat(n)
+    );
     assert!(parse(&src).diags.is_empty());
 }
 
@@ -238,16 +247,48 @@ fn nesting_just_under_the_limit_fits_the_stack() {
         wrap(format!("x := {}1{};", "f(".repeat(n), ")".repeat(n))),
         wrap(format!("x := {}1{};", "a[".repeat(n), "]".repeat(n))),
         wrap(format!("x := {}1;", "NOT -".repeat(n / 2))),
-        wrap(format!("{}x := 1;{}", "IF a THEN ".repeat(n), " END_IF;".repeat(n))),
-        wrap(format!("{}x := 1;{}", "CASE a OF 1: ".repeat(n), " END_CASE;".repeat(n))),
-        wrap(format!("{}x := 1;{}", "WHILE a DO ".repeat(n), " END_WHILE;".repeat(n))),
-        wrap(format!("{}x := 1;{}", "FOR i := 1 TO 2 DO ".repeat(n), " END_FOR;".repeat(n))),
-        wrap(format!("{}x := 1;{}", "REPEAT ".repeat(n), " UNTIL a END_REPEAT;".repeat(n))),
+        wrap(format!(
+            "{}x := 1;{}",
+            "IF a THEN ".repeat(n),
+            " END_IF;".repeat(n)
+        )),
+        wrap(format!(
+            "{}x := 1;{}",
+            "CASE a OF 1: ".repeat(n),
+            " END_CASE;".repeat(n)
+        )),
+        wrap(format!(
+            "{}x := 1;{}",
+            "WHILE a DO ".repeat(n),
+            " END_WHILE;".repeat(n)
+        )),
+        wrap(format!(
+            "{}x := 1;{}",
+            "FOR i := 1 TO 2 DO ".repeat(n),
+            " END_FOR;".repeat(n)
+        )),
+        wrap(format!(
+            "{}x := 1;{}",
+            "REPEAT ".repeat(n),
+            " UNTIL a END_REPEAT;".repeat(n)
+        )),
         format!("TYPE T : {}INT; END_TYPE", "ARRAY [1..2] OF ".repeat(n)),
         format!("TYPE T : {}INT; END_TYPE", "REF_TO ".repeat(n)),
-        format!("TYPE T : {} a : INT; {} END_TYPE", "STRUCT s : ".repeat(n - 1) + "STRUCT", "END_STRUCT; ".repeat(n)),
-        format!("PROGRAM p VAR x : T := {}1{}; END_VAR END_PROGRAM", "[".repeat(n), "]".repeat(n)),
-        format!("PROGRAM p VAR x : T := {}1{}; END_VAR END_PROGRAM", "(a := ".repeat(n), ")".repeat(n)),
+        format!(
+            "TYPE T : {} a : INT; {} END_TYPE",
+            "STRUCT s : ".repeat(n - 1) + "STRUCT",
+            "END_STRUCT; ".repeat(n)
+        ),
+        format!(
+            "PROGRAM p VAR x : T := {}1{}; END_VAR END_PROGRAM",
+            "[".repeat(n),
+            "]".repeat(n)
+        ),
+        format!(
+            "PROGRAM p VAR x : T := {}1{}; END_VAR END_PROGRAM",
+            "(a := ".repeat(n),
+            ")".repeat(n)
+        ),
     ];
     for (i, src) in cases.iter().enumerate() {
         let out = parse(src);

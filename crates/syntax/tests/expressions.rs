@@ -111,3 +111,19 @@ fn spans_cover_the_expression_text() {
     assert_eq!(out.text(value.span), "a + f(b, c)[1]");
     assert_eq!(out.text(out.body(0)[0].span), "x := a + f(b, c)[1]");
 }
+
+#[test]
+fn standard_functions_named_like_operators() {
+    assert_eq!(expr("AND(a, b)"), "(call AND a b)");
+    assert_eq!(expr("OR(a, AND(b, c))"), "(call OR a (call AND b c))");
+    assert_eq!(
+        expr("XOR(IN1 := a, IN2 := b)"),
+        "(call XOR (IN1 := a) (IN2 := b))"
+    );
+    assert_eq!(expr("MOD(x, 3) + 1"), "(+ (call MOD x 3) 1)");
+    assert_eq!(expr("NOT(IN := a)"), "(call NOT (IN := a))");
+    // Still operators where an operator is expected.
+    assert_eq!(expr("NOT(a)"), "(not (paren a))");
+    assert_eq!(expr("a AND (b)"), "(AND a (paren b))");
+    assert_eq!(expr("a MOD (3)"), "(MOD a (paren 3))");
+}

@@ -105,10 +105,25 @@ fn malformed_literals_are_e004_and_overflow_e006() {
         "T#1s2h",
         "INT#",
         "12abc",
+        "1__000",
+        "T#",
+        "16#",
     ] {
         assert_eq!(errors(&prog(bad)), vec![("E004", 2)], "{bad}");
     }
-    for big in ["18446744073709551616", "16#1_0000_0000_0000_0000", "INT#-9223372036854775809"] {
+    for big in [
+        "18446744073709551616",
+        "16#1_0000_0000_0000_0000",
+        "INT#-9223372036854775809",
+        "SINT#300",
+        "SINT#-129",
+        "USINT#-1",
+        "INT#40000",
+        "INT#16#10000",
+        "BYTE#256",
+        "BOOL#2",
+        "REAL#1.0E39",
+    ] {
         assert_eq!(errors(&prog(big)), vec![("E006", 2)], "{big}");
     }
     assert_eq!(errors(&prog("'a$qb'")), vec![("E003", 2)]);
@@ -122,4 +137,23 @@ fn a_malformed_literal_is_an_error_expression() {
         panic!()
     };
     assert_eq!(out.expr(value), "(+ <error> 1)");
+}
+
+#[test]
+fn typed_literals_at_the_edges_of_their_types() {
+    assert_eq!(expr("SINT#-128"), "SINT#-128");
+    assert_eq!(expr("SINT#127"), "SINT#127");
+    assert_eq!(expr("BYTE#16#FF"), "BYTE#255");
+    assert_eq!(
+        expr("ULINT#18446744073709551615"),
+        "ULINT#18446744073709551615"
+    );
+    assert_eq!(
+        expr("LINT#-9223372036854775808"),
+        "LINT#-9223372036854775808"
+    );
+    assert_eq!(expr("BOOL#0"), "BOOL#0");
+    // Unknown to the parser: the checker types these.
+    assert_eq!(expr("MyInt#100000"), "MyInt#100000");
+    assert_eq!(expr("LREAL#1.0E300"), "LREAL#1e300");
 }

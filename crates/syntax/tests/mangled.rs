@@ -81,7 +81,13 @@ fn check(name: &str, what: &str, text: &str) -> Duration {
         assert!(
             matches!(
                 d.code,
-                Code::E001 | Code::E002 | Code::E003 | Code::E004 | Code::E005 | Code::E006 | Code::E007
+                Code::E001
+                    | Code::E002
+                    | Code::E003
+                    | Code::E004
+                    | Code::E005
+                    | Code::E006
+                    | Code::E007
             ),
             "{name} ({what}): unexpected code {:?}",
             d.code
@@ -92,7 +98,10 @@ fn check(name: &str, what: &str, text: &str) -> Duration {
             d.span,
             text.len()
         );
-        assert!(d.span.start >= last, "{name} ({what}): diagnostics not sorted");
+        assert!(
+            d.span.start >= last,
+            "{name} ({what}): diagnostics not sorted"
+        );
         last = d.span.start;
         assert!(!d.message.is_empty());
     }
@@ -128,18 +137,106 @@ fn splice(s: &str, at: usize, del: usize, insert: &str) -> String {
 
 /// Fragments that tend to break lexers and parsers.
 const NASTY: &[&str] = &[
-    "(*", "*)", "/*", "*/", "//", "{", "}", "'", "\"", "$", "$'", "#", "%", "%I", "%IX", "%QW*",
-    "16#", "T#", "TOD#25:", "D#2024-", "1..", "..", ".", "..5", ":=", "=>", ";", ",", "(", ")",
-    "[", "]", "^", "**", "END_IF", "END_VAR", "ELSE", "UNTIL", "VAR", "STRUCT", "ARRAY", "OF",
-    "CASE x OF", "1:", "\u{0}", "\u{7f}", "\u{feff}", "\u{e9}", "\u{2028}", "\u{1F600}", "\r",
-    "\t", "\u{fffd}", "9999999999999999999999", "1e999", "INT#", "Color#", "AT", "%X99999999999",
+    "(*",
+    "*)",
+    "/*",
+    "*/",
+    "//",
+    "{",
+    "}",
+    "'",
+    "\"",
+    "$",
+    "$'",
+    "#",
+    "%",
+    "%I",
+    "%IX",
+    "%QW*",
+    "16#",
+    "T#",
+    "TOD#25:",
+    "D#2024-",
+    "1..",
+    "..",
+    ".",
+    "..5",
+    ":=",
+    "=>",
+    ";",
+    ",",
+    "(",
+    ")",
+    "[",
+    "]",
+    "^",
+    "**",
+    "END_IF",
+    "END_VAR",
+    "ELSE",
+    "UNTIL",
+    "VAR",
+    "STRUCT",
+    "ARRAY",
+    "OF",
+    "CASE x OF",
+    "1:",
+    "\u{0}",
+    "\u{7f}",
+    "\u{feff}",
+    "\u{e9}",
+    "\u{2028}",
+    "\u{1F600}",
+    "\r",
+    "\t",
+    "\u{fffd}",
+    "9999999999999999999999",
+    "1e999",
+    "INT#",
+    "Color#",
+    "AT",
+    "%X99999999999",
 ];
 
 const KEYWORDS: &[&str] = &[
-    "IF", "THEN", "ELSIF", "END_IF", "CASE", "OF", "END_CASE", "FOR", "TO", "BY", "DO", "END_FOR",
-    "WHILE", "END_WHILE", "REPEAT", "UNTIL", "END_REPEAT", "PROGRAM", "END_PROGRAM", "FUNCTION",
-    "FUNCTION_BLOCK", "VAR", "VAR_INPUT", "END_VAR", "TYPE", "END_TYPE", "STRUCT", "END_STRUCT",
-    "CONFIGURATION", "RESOURCE", "TASK", "WITH", "ON", "AT", "NOT", "MOD", "RETURN", "EXIT",
+    "IF",
+    "THEN",
+    "ELSIF",
+    "END_IF",
+    "CASE",
+    "OF",
+    "END_CASE",
+    "FOR",
+    "TO",
+    "BY",
+    "DO",
+    "END_FOR",
+    "WHILE",
+    "END_WHILE",
+    "REPEAT",
+    "UNTIL",
+    "END_REPEAT",
+    "PROGRAM",
+    "END_PROGRAM",
+    "FUNCTION",
+    "FUNCTION_BLOCK",
+    "VAR",
+    "VAR_INPUT",
+    "END_VAR",
+    "TYPE",
+    "END_TYPE",
+    "STRUCT",
+    "END_STRUCT",
+    "CONFIGURATION",
+    "RESOURCE",
+    "TASK",
+    "WITH",
+    "ON",
+    "AT",
+    "NOT",
+    "MOD",
+    "RETURN",
+    "EXIT",
 ];
 
 fn mutants(text: &str, rng: &mut Rng, rounds: usize) -> Vec<(String, String)> {
@@ -149,7 +246,10 @@ fn mutants(text: &str, rng: &mut Rng, rounds: usize) -> Vec<(String, String)> {
     // Truncation at every k-th byte.
     let k = (text.len() / rounds.max(1)).max(1);
     for at in (0..text.len()).step_by(k) {
-        out.push((format!("truncate at {at}"), text[..floor_char(text, at)].to_string()));
+        out.push((
+            format!("truncate at {at}"),
+            text[..floor_char(text, at)].to_string(),
+        ));
     }
     for round in 0..rounds {
         let tok = |rng: &mut Rng| toks.get(rng.below(toks.len())).copied().unwrap_or((0, 0));
@@ -174,7 +274,11 @@ fn mutants(text: &str, rng: &mut Rng, rounds: usize) -> Vec<(String, String)> {
             2 => {
                 let (a1, b1) = tok(rng);
                 let (a2, b2) = tok(rng);
-                let ((a1, b1), (a2, b2)) = if a1 <= a2 { ((a1, b1), (a2, b2)) } else { ((a2, b2), (a1, b1)) };
+                let ((a1, b1), (a2, b2)) = if a1 <= a2 {
+                    ((a1, b1), (a2, b2))
+                } else {
+                    ((a2, b2), (a1, b1))
+                };
                 if b1 > a2 {
                     ("swap (same token)".to_string(), text.to_string())
                 } else {
@@ -193,16 +297,25 @@ fn mutants(text: &str, rng: &mut Rng, rounds: usize) -> Vec<(String, String)> {
                 let n = 1 + rng.below(8);
                 let bytes: Vec<u8> = (0..n).map(|_| rng.next() as u8).collect();
                 let junk = String::from_utf8_lossy(&bytes).into_owned();
-                ("insert random bytes".to_string(), splice(text, rng.below(text.len() + 1), 0, &junk))
+                (
+                    "insert random bytes".to_string(),
+                    splice(text, rng.below(text.len() + 1), 0, &junk),
+                )
             }
             4 => {
                 let frag = NASTY[rng.below(NASTY.len())];
-                (format!("insert {frag:?}"), splice(text, rng.below(text.len() + 1), 0, frag))
+                (
+                    format!("insert {frag:?}"),
+                    splice(text, rng.below(text.len() + 1), 0, frag),
+                )
             }
             5 => {
                 let (a, b) = tok(rng);
                 let kw = KEYWORDS[rng.below(KEYWORDS.len())];
-                (format!("replace a token with {kw}"), splice(text, a, b - a, kw))
+                (
+                    format!("replace a token with {kw}"),
+                    splice(text, a, b - a, kw),
+                )
             }
             6 => {
                 let (a, b) = tok(rng);
@@ -211,7 +324,10 @@ fn mutants(text: &str, rng: &mut Rng, rounds: usize) -> Vec<(String, String)> {
             _ => {
                 let frag = NASTY[rng.below(NASTY.len())];
                 let (a, b) = tok(rng);
-                (format!("replace a token with {frag:?}"), splice(text, a, b - a, frag))
+                (
+                    format!("replace a token with {frag:?}"),
+                    splice(text, a, b - a, frag),
+                )
             }
         };
         out.push(m);
@@ -252,7 +368,10 @@ fn deep(text: &str, rng: &mut Rng, kind: usize) -> (String, String) {
 #[test]
 fn mangled_inputs_never_panic_or_hang() {
     let inputs = inputs();
-    let corpus: usize = inputs[SAMPLES.len()..].iter().map(|(_, t)| t.len().max(1)).sum();
+    let corpus: usize = inputs[SAMPLES.len()..]
+        .iter()
+        .map(|(_, t)| t.len().max(1))
+        .sum();
     let mut rng = Rng(0x5EED_1EC6_1131_0003);
     let mut parses = 0usize;
     let mut slowest = (Duration::ZERO, String::new());
@@ -310,7 +429,11 @@ fn samples_parse_cleanly() {
     for (name, text) in SAMPLES {
         let mut interner = Interner::new();
         let parsed = automat_syntax::parse(FileId(0), text, &mut interner);
-        assert!(parsed.diagnostics.is_empty(), "{name}: {:#?}", parsed.diagnostics);
+        assert!(
+            parsed.diagnostics.is_empty(),
+            "{name}: {:#?}",
+            parsed.diagnostics
+        );
         assert!(!parsed.unit.items.is_empty());
     }
 }
@@ -321,7 +444,8 @@ fn arbitrary_bytes_never_panic() {
     for len in [0usize, 1, 2, 3, 5, 8, 13, 64, 512, 4096] {
         for _ in 0..40 {
             // Bias towards bytes that mean something to the lexer.
-            let alphabet = b"(*)/{}'\"$#%:=;,.[]^+-<>&ABCDEFIXQWMTtdhms0123456789_ \n\x00\xc3\xa9\xff";
+            let alphabet =
+                b"(*)/{}'\"$#%:=;,.[]^+-<>&ABCDEFIXQWMTtdhms0123456789_ \n\x00\xc3\xa9\xff";
             let bytes: Vec<u8> = (0..len)
                 .map(|_| {
                     if rng.below(4) == 0 {

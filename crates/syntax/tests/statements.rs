@@ -11,7 +11,10 @@ fn assignments_calls_and_simple_statements() {
         "[(call fb (IN := x) (Q => y))]"
     );
     assert_eq!(body("f(a, b);"), "[(call f a b)]");
-    assert_eq!(body("RETURN; EXIT; CONTINUE; ;"), "[RETURN; EXIT; CONTINUE; EMPTY]");
+    assert_eq!(
+        body("RETURN; EXIT; CONTINUE; ;"),
+        "[RETURN; EXIT; CONTINUE; EMPTY]"
+    );
     assert_eq!(body(""), "[]");
     // A non-call expression statement is syntax; sema rejects it (E063).
     assert_eq!(body("x = 1;"), "[(= x 1)]");

@@ -40,33 +40,37 @@ impl<'m> Checker<'m> {
                 return self.call_by_name(e, id.sym, id.span, args, expect, as_stmt);
             }
         }
-        // `inst.f(...)`: a function or method called through an instance.
-        if let ExprKind::Member { base, member } = &callee.kind {
-            let b = self.expr(base, None);
-            if let Ty::Of(bt) = b.ty {
-                if let Some(fb) = self.fb_of(bt) {
-                    let has = self
-                        .model
-                        .pou(fb)
-                        .is_some_and(|p| p.vars.get(member.sym).is_some());
-                    if !has {
-                        self.err(Code::E054, member.span, |c| {
-                            format!(
-                                "`{}` cannot be called through the instance `{}`: function block `{}` has no method or member `{}`",
-                                c.name(member.sym),
-                                expr_text(c.interner, base),
-                                c.type_name(bt),
-                                c.name(member.sym)
-                            )
-                        });
-                        self.args_unchecked(args);
-                        return Typed::ERROR;
+        // The callee is a variable or member: it must be a function block
+        // instance. `inst.f(...)` with no member `f` is a function or method
+        // called through an instance.
+        let t = match &callee.kind {
+            ExprKind::Member { base, member } => {
+                let b = self.expr(base, None);
+                if let Ty::Of(bt) = b.ty {
+                    if let Some(fb) = self.fb_of(bt) {
+                        let has = self
+                            .model
+                            .pou(fb)
+                            .is_some_and(|p| p.vars.get(member.sym).is_some());
+                        if !has {
+                            self.err(Code::E054, member.span, |c| {
+                                format!(
+                                    "`{}` cannot be called through the instance `{}`: function block `{}` has no method or member `{}`",
+                                    c.name(member.sym),
+                                    expr_text(c.interner, base),
+                                    c.type_name(bt),
+                                    c.name(member.sym)
+                                )
+                            });
+                            self.args_unchecked(args);
+                            return Typed::ERROR;
+                        }
                     }
                 }
+                self.member_of(&b, base, *member, Access::Read)
             }
-        }
-        // A variable (or member) being called: must be a function block instance.
-        let t = self.expr(callee, None);
+            _ => self.expr(callee, None),
+        };
         let fb = match t.ty {
             Ty::Error => {
                 self.args_unchecked(args);

@@ -27,9 +27,7 @@ impl<'m> Checker<'m> {
         access: Access,
     ) -> Typed {
         if self.depth >= MAX_EXPR_DEPTH {
-            self.err(Code::E070, e.span, |_| {
-                "expression nested too deeply".into()
-            });
+            self.too_deep(e.span, "expression");
             return Typed::ERROR;
         }
         self.depth += 1;
@@ -353,6 +351,11 @@ impl<'m> Checker<'m> {
             }
         }
         let b = self.expr_access(base, None, access);
+        self.member_of(&b, base, member, access)
+    }
+
+    /// `base.member` once `base` is typed.
+    pub(crate) fn member_of(&mut self, b: &Typed, base: &Expr, member: Ident, access: Access) -> Typed {
         let id = match b.ty {
             Ty::Error => return Typed::ERROR,
             Ty::Of(id) => id,

@@ -79,6 +79,8 @@ pub struct Checker<'m> {
     pub(crate) depth: u32,
     /// Nesting of the statement being checked.
     pub(crate) stmt_depth: u32,
+    /// "Nested too deeply" was reported for this POU (once is enough).
+    pub(crate) deep_reported: bool,
 }
 
 impl<'m> Checker<'m> {
@@ -98,6 +100,7 @@ impl<'m> Checker<'m> {
             loop_depth: 0,
             depth: 0,
             stmt_depth: 0,
+            deep_reported: false,
         }
     }
 
@@ -107,6 +110,7 @@ impl<'m> Checker<'m> {
         self.loop_depth = 0;
         self.depth = 0;
         self.stmt_depth = 0;
+        self.deep_reported = false;
         match &pou.body {
             ast::Body::St(stmts) => self.stmts(stmts),
         }
@@ -117,6 +121,14 @@ impl<'m> Checker<'m> {
         if !self.silent {
             let m = msg(self);
             self.diags.push(Diagnostic::error(code, span, m));
+        }
+    }
+
+    /// Reports nesting beyond the limits, once per POU.
+    pub(crate) fn too_deep(&mut self, span: Span, what: &'static str) {
+        if !self.deep_reported {
+            self.deep_reported = true;
+            self.err(Code::E070, span, |_| format!("{what} nested too deeply"));
         }
     }
 

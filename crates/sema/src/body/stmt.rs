@@ -19,9 +19,7 @@ impl<'m> Checker<'m> {
 
     fn stmt(&mut self, s: &Stmt) {
         if self.stmt_depth >= MAX_EXPR_DEPTH {
-            self.err(Code::E070, s.span, |_| {
-                "statements nested too deeply".into()
-            });
+            self.too_deep(s.span, "statements");
             return;
         }
         self.stmt_depth += 1;

@@ -94,6 +94,17 @@ impl<'a> Builder<'a> {
             return_type: None,
         });
         self.pou_names.insert(p.name.sym, id);
+        let n: usize = p
+            .var_blocks
+            .iter()
+            .flat_map(|b| &b.decls)
+            .map(|d| d.names.len())
+            .sum();
+        if let Some(sc) = self.scopes.get_mut(scope) {
+            sc.slots.reserve_exact(n);
+            sc.vars.reserve_exact(n);
+            sc.by_name.reserve(n);
+        }
         for block in &p.var_blocks {
             self.add_block(scope, block);
         }
@@ -149,6 +160,7 @@ impl<'a> Builder<'a> {
             parent,
             owner,
             slots: Vec::new(),
+            vars: Vec::new(),
             by_name: FxHashMap::default(),
         });
         self.scopes.len() - 1
@@ -207,6 +219,7 @@ impl<'a> Builder<'a> {
                     first: first_idx,
                     state: SlotState::Pending,
                 });
+                sc.vars.push(None);
             }
         }
     }

@@ -22,7 +22,6 @@ pub(super) enum SlotInfo {
         ty: TypeId,
         constant: bool,
         section: Section,
-        value: Option<Value>,
         /// Its initial value was in error (already reported).
         poisoned: bool,
     },
@@ -270,12 +269,12 @@ impl<'a> Builder<'a> {
             },
             SlotInfo::Var { poisoned: true, .. } => Typed::ERROR,
             SlotInfo::Var { ty, .. } if ty == TypeId::ERROR => Typed::ERROR,
-            SlotInfo::Var {
-                ty,
-                constant,
-                value,
-                ..
-            } => {
+            SlotInfo::Var { ty, constant, .. } => {
+                let value = self
+                    .slot_var(s, i)
+                    .and_then(|v| v.init.as_ref())
+                    .and_then(|x| x.as_value())
+                    .cloned();
                 if !constant {
                     self.emit(Diagnostic::error(
                         Code::E070,

@@ -71,6 +71,8 @@ pub(crate) struct Scope<'a> {
     parent: Option<usize>,
     owner: Owner,
     slots: Vec<VarSlot<'a>>,
+    /// The resolved variables, index for index with `slots`.
+    vars: Vec<Option<Var>>,
     by_name: FxHashMap<Symbol, u32>,
 }
 
@@ -84,11 +86,13 @@ pub(crate) struct VarSlot<'a> {
     state: SlotState,
 }
 
+#[derive(Clone, Copy, PartialEq, Eq)]
 enum SlotState {
     Pending,
     InProgress,
-    /// The variable, and whether its initial value was in error.
-    Done(Var, bool),
+    /// Resolved (the variable is in [`Scope::vars`]); `poisoned` when its
+    /// initial value was in error.
+    Done { poisoned: bool },
 }
 
 pub(crate) struct PouEntry<'a> {
@@ -168,6 +172,7 @@ pub(crate) fn declare<'a>(
             parent: None,
             owner: Owner::Project,
             slots: Vec::new(),
+            vars: Vec::new(),
             by_name: FxHashMap::default(),
         }],
         configs: Vec::new(),
@@ -254,12 +259,12 @@ impl<'a> Builder<'a> {
         // Every slot is resolved by now; slot order is the name index's order.
         let mut scopes: Vec<VarTable> = Vec::with_capacity(self.scopes.len());
         for sc in self.scopes.iter_mut() {
-            let vars = sc
-                .slots
-                .drain(..)
-                .map(|slot| match slot.state {
-                    SlotState::Done(v, _) => v,
-                    _ => Var {
+            let vars = std::mem::take(&mut sc.vars)
+                .into_iter()
+                .zip(sc.slots.iter())
+                .map(|(v, slot)| match v {
+                    Some(v) => v,
+                    None => Var {
                         name: slot.name.sym,
                         span: slot.name.span,
                         section: Section::of(slot.block.kind),

@@ -15,7 +15,6 @@ fn info(v: &Var, poisoned: bool) -> SlotInfo {
         ty: v.ty,
         constant: v.constant,
         section: v.section,
-        value: v.init.as_ref().and_then(Init::as_value).cloned(),
         poisoned,
     }
 }
@@ -26,8 +25,13 @@ impl<'a> Builder<'a> {
         let Some(slot) = self.scopes.get(s).and_then(|sc| sc.slots.get(i as usize)) else {
             return SlotInfo::Cycle;
         };
-        match &slot.state {
-            SlotState::Done(v, p) => return info(v, *p),
+        match slot.state {
+            SlotState::Done { poisoned } => {
+                return match self.slot_var(s, i) {
+                    Some(v) => info(v, poisoned),
+                    None => SlotInfo::Cycle,
+                }
+            }
             SlotState::InProgress => return SlotInfo::Cycle,
             SlotState::Pending => {}
         }
@@ -94,7 +98,10 @@ impl<'a> Builder<'a> {
             edge: decl.edge,
         };
         let out = info(&var, poisoned);
-        self.set_slot(s, i, SlotState::Done(var, poisoned));
+        self.set_slot(s, i, SlotState::Done { poisoned });
+        if let Some(v) = self.scopes.get_mut(s).and_then(|sc| sc.vars.get_mut(i as usize)) {
+            *v = Some(var);
+        }
         out
     }
 
@@ -109,17 +116,12 @@ impl<'a> Builder<'a> {
     }
 
     fn slot_init(&self, s: usize, i: u32) -> Option<Init> {
-        match self.scopes.get(s)?.slots.get(i as usize)?.state {
-            SlotState::Done(ref v, _) => v.init.clone(),
-            _ => None,
-        }
+        self.slot_var(s, i)?.init.clone()
     }
 
-    fn slot_var(&self, s: usize, i: u32) -> Option<&Var> {
-        match &self.scopes.get(s)?.slots.get(i as usize)?.state {
-            SlotState::Done(v, _) => Some(v),
-            _ => None,
-        }
+    /// A resolved variable.
+    pub(super) fn slot_var(&self, s: usize, i: u32) -> Option<&Var> {
+        self.scopes.get(s)?.vars.get(i as usize)?.as_ref()
     }
 
     /// Every VAR_EXTERNAL needs a VAR_GLOBAL of the same name and type
@@ -159,11 +161,10 @@ impl<'a> Builder<'a> {
                 }
                 match (matched, other) {
                     (Some((constant, init)), _) => {
-                        if let Some(SlotState::Done(v, _)) = self
+                        if let Some(Some(v)) = self
                             .scopes
                             .get_mut(s)
-                            .and_then(|sc| sc.slots.get_mut(i as usize))
-                            .map(|x| &mut x.state)
+                            .and_then(|sc| sc.vars.get_mut(i as usize))
                         {
                             v.constant |= constant;
                             if constant {

@@ -158,7 +158,10 @@ fn strings() {
 
 #[test]
 fn invalid_characters_are_one_error_per_run() {
-    assert_eq!(codes("a @@ b ? c"), vec![(Code::E001, 2, 4), (Code::E001, 7, 8)]);
+    assert_eq!(
+        codes("a @@ b ? c"),
+        vec![(Code::E001, 2, 4), (Code::E001, 7, 8)]
+    );
     assert_eq!(codes("a \u{e9}\u{e8} b"), vec![(Code::E001, 2, 6)]);
     assert_eq!(kinds("a # b").len(), 3);
 }

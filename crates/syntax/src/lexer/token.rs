@@ -130,7 +130,10 @@ const KW_TABLE: [u8; 256] = {
             j += 1;
         }
         let slot = kw_slot(h);
-        assert!(table[slot] == 0, "keyword hash collision: change KW_HASH_MUL");
+        assert!(
+            table[slot] == 0,
+            "keyword hash collision: change KW_HASH_MUL"
+        );
         table[slot] = (i + 1) as u8;
         i += 1;
     }
@@ -323,7 +326,10 @@ mod tests {
     fn keyword_lookup_finds_every_keyword_in_any_case() {
         for &kw in Kw::ALL {
             assert_eq!(Kw::lookup(kw.text()), Some(kw));
-            assert_eq!(Kw::lookup(kw.name().to_ascii_lowercase().as_bytes()), Some(kw));
+            assert_eq!(
+                Kw::lookup(kw.name().to_ascii_lowercase().as_bytes()),
+                Some(kw)
+            );
         }
         assert_eq!(Kw::lookup(b"End_If"), Some(Kw::EndIf));
         assert_eq!(Kw::lookup(b"END_I"), None);

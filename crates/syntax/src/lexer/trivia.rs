@@ -9,7 +9,10 @@ impl Lexer<'_> {
             match (self.at(self.pos), self.at(self.pos + 1)) {
                 (c, _) if super::is_space(c) => {
                     let rest = &self.b[self.pos..];
-                    self.pos += rest.iter().position(|&c| !super::is_space(c)).unwrap_or(rest.len());
+                    self.pos += rest
+                        .iter()
+                        .position(|&c| !super::is_space(c))
+                        .unwrap_or(rest.len());
                 }
                 (b'(', b'*') => self.nested_comment(),
                 (b'/', b'*') => self.c_comment(),

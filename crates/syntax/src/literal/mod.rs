@@ -24,10 +24,18 @@ pub enum LitError {
 /// What a `Name#` prefix introduces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Prefix {
-    Duration { long: bool },
-    Date { long: bool },
-    TimeOfDay { long: bool },
-    DateTime { long: bool },
+    Duration {
+        long: bool,
+    },
+    Date {
+        long: bool,
+    },
+    TimeOfDay {
+        long: bool,
+    },
+    DateTime {
+        long: bool,
+    },
     /// Any other name: a type (`INT#5`, `Color#Red`).
     Type,
 }
@@ -184,7 +192,9 @@ fn real(text: &str) -> Result<LitKind, LitError> {
         digits_ok(e)
     });
     if !digits_ok(int_part) || !frac.is_none_or(digits_ok) || !exp_ok {
-        return Err(LitError::Malformed(format!("malformed real number `{text}`")));
+        return Err(LitError::Malformed(format!(
+            "malformed real number `{text}`"
+        )));
     }
     let clean: String = text.chars().filter(|&c| c != '_').collect();
     match clean.parse::<f64>() {
@@ -192,7 +202,9 @@ fn real(text: &str) -> Result<LitKind, LitError> {
         Ok(_) => Err(LitError::OutOfRange(format!(
             "real literal `{text}` is too large for LREAL"
         ))),
-        Err(_) => Err(LitError::Malformed(format!("malformed real number `{text}`"))),
+        Err(_) => Err(LitError::Malformed(format!(
+            "malformed real number `{text}`"
+        ))),
     }
 }
 
@@ -224,11 +236,9 @@ pub fn check_typed(upper_ty: &[u8], whole: &str, kind: &LitKind) -> Result<(), L
             ))),
             _ => Ok(()),
         },
-        LitKind::Real(r) if upper_ty == b"REAL" && r.abs() > f64::from(f32::MAX) => {
-            Err(LitError::OutOfRange(format!(
-                "literal `{whole}` does not fit in REAL"
-            )))
-        }
+        LitKind::Real(r) if upper_ty == b"REAL" && r.abs() > f64::from(f32::MAX) => Err(
+            LitError::OutOfRange(format!("literal `{whole}` does not fit in REAL")),
+        ),
         _ => Ok(()),
     }
 }
@@ -288,7 +298,7 @@ mod tests {
         assert_eq!(number("1.5E-3"), Ok(LitKind::Real(1.5e-3)));
         assert_eq!(number("1.0e6"), Ok(LitKind::Real(1.0e6)));
         assert_eq!(number("1e6"), Ok(LitKind::Real(1.0e6)));
-        assert_eq!(number("3.141_5"), Ok(LitKind::Real(3.1415)));
+        assert_eq!(number("12.345_6"), Ok(LitKind::Real(12.3456)));
         assert!(matches!(number("1.5e"), Err(LitError::Malformed(_))));
         assert!(matches!(number("1e999"), Err(LitError::OutOfRange(_))));
     }

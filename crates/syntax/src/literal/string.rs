@@ -68,16 +68,35 @@ mod tests {
             decode_string("text $'q$' $N $24", false).as_deref(),
             Ok("text 'q' \n $")
         );
-        assert_eq!(decode_string("$$$L$p$r$t", false).as_deref(), Ok("$\n\u{0C}\r\t"));
+        assert_eq!(
+            decode_string("$$$L$p$r$t", false).as_deref(),
+            Ok("$\n\u{0C}\r\t")
+        );
         assert_eq!(decode_string("$C4", false).as_deref(), Ok("\u{C4}"));
-        assert_eq!(decode_string("wide $\"x$\" $0041", true).as_deref(), Ok("wide \"x\" A"));
-        assert_eq!(decode_string("caf\u{e9}", false).as_deref(), Ok("caf\u{e9}"));
+        assert_eq!(
+            decode_string("wide $\"x$\" $0041", true).as_deref(),
+            Ok("wide \"x\" A")
+        );
+        assert_eq!(
+            decode_string("caf\u{e9}", false).as_deref(),
+            Ok("caf\u{e9}")
+        );
     }
 
     #[test]
     fn bad_escapes() {
-        for (s, wide) in [("$q", false), ("$", false), ("$4", false), ("$004", true), ("$D800", true), ("$4G", false)] {
-            assert!(matches!(decode_string(s, wide), Err(LitError::BadEscape(_))), "{s}");
+        for (s, wide) in [
+            ("$q", false),
+            ("$", false),
+            ("$4", false),
+            ("$004", true),
+            ("$D800", true),
+            ("$4G", false),
+        ] {
+            assert!(
+                matches!(decode_string(s, wide), Err(LitError::BadEscape(_))),
+                "{s}"
+            );
         }
     }
 }

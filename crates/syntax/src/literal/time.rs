@@ -70,7 +70,10 @@ pub fn duration(body: &str, long: bool) -> Result<LitKind, LitError> {
             let why = if unit.is_empty() {
                 "expected a unit (d, h, m, s, ms, us or ns) after the number".to_string()
             } else {
-                format!("`{}` is not a unit (d, h, m, s, ms, us or ns)", &rest[unit_start..i])
+                format!(
+                    "`{}` is not a unit (d, h, m, s, ms, us or ns)",
+                    &rest[unit_start..i]
+                )
             };
             return Err(malformed(what, body, &why));
         };
@@ -82,7 +85,11 @@ pub fn duration(body: &str, long: bool) -> Result<LitKind, LitError> {
             ));
         }
         if saw_fraction {
-            return Err(malformed(what, body, "only the last unit may have a fraction"));
+            return Err(malformed(
+                what,
+                body,
+                "only the last unit may have a fraction",
+            ));
         }
         saw_fraction = !frac_text.is_empty();
         last_unit = Some(u);
@@ -95,7 +102,11 @@ pub fn duration(body: &str, long: bool) -> Result<LitKind, LitError> {
         total = total.checked_add(part).ok_or_else(|| too_long(body))?;
     }
     if last_unit.is_none() {
-        return Err(malformed(what, body, "expected a number and a unit, as in `T#5s`"));
+        return Err(malformed(
+            what,
+            body,
+            "expected a number and a unit, as in `T#5s`",
+        ));
     }
     Ok(LitKind::Duration {
         nanos: if neg { -total } else { total },
@@ -167,11 +178,17 @@ fn all_digits(s: &str) -> bool {
 
 fn parse_date(text: &str, body: &str, what: &str) -> Result<i64, LitError> {
     let mut parts = text.split('-');
-    let (Some(y), Some(m), Some(d), None) = (parts.next(), parts.next(), parts.next(), parts.next())
+    let (Some(y), Some(m), Some(d), None) =
+        (parts.next(), parts.next(), parts.next(), parts.next())
     else {
         return Err(malformed(what, body, "expected a date as `YYYY-MM-DD`"));
     };
-    if !all_digits(y) || !all_digits(m) || !all_digits(d) || y.len() > 4 || m.len() > 2 || d.len() > 2
+    if !all_digits(y)
+        || !all_digits(m)
+        || !all_digits(d)
+        || y.len() > 4
+        || m.len() > 2
+        || d.len() > 2
     {
         return Err(malformed(what, body, "expected a date as `YYYY-MM-DD`"));
     }
@@ -181,7 +198,11 @@ fn parse_date(text: &str, body: &str, what: &str) -> Result<i64, LitError> {
         d.parse::<u32>().unwrap_or(0),
     );
     if !(1..=12).contains(&month) {
-        return Err(malformed(what, body, &format!("month {month} is not 1..12")));
+        return Err(malformed(
+            what,
+            body,
+            &format!("month {month} is not 1..12"),
+        ));
     }
     let max_day = days_in_month(year, month);
     if day < 1 || day > max_day {
@@ -304,11 +325,43 @@ mod tests {
 
     #[test]
     fn dates() {
-        assert_eq!(date("1970-01-01", false), Ok(LitKind::Date { days: 0, long: false }));
-        assert_eq!(date("2024-01-31", true), Ok(LitKind::Date { days: 19753, long: true }));
-        assert_eq!(date("2024-02-29", false), Ok(LitKind::Date { days: 19782, long: false }));
-        assert_eq!(date("1969-12-31", false), Ok(LitKind::Date { days: -1, long: false }));
-        for s in ["2023-02-29", "2024-13-01", "2024-00-10", "2024-04-31", "2024-1", "x", "1900-02-29"] {
+        assert_eq!(
+            date("1970-01-01", false),
+            Ok(LitKind::Date {
+                days: 0,
+                long: false
+            })
+        );
+        assert_eq!(
+            date("2024-01-31", true),
+            Ok(LitKind::Date {
+                days: 19753,
+                long: true
+            })
+        );
+        assert_eq!(
+            date("2024-02-29", false),
+            Ok(LitKind::Date {
+                days: 19782,
+                long: false
+            })
+        );
+        assert_eq!(
+            date("1969-12-31", false),
+            Ok(LitKind::Date {
+                days: -1,
+                long: false
+            })
+        );
+        for s in [
+            "2023-02-29",
+            "2024-13-01",
+            "2024-00-10",
+            "2024-04-31",
+            "2024-1",
+            "x",
+            "1900-02-29",
+        ] {
             assert!(matches!(date(s, false), Err(LitError::Malformed(_))), "{s}");
         }
         assert!(date("2000-02-29", false).is_ok());
@@ -319,18 +372,38 @@ mod tests {
         let ns = |h: i64, m: i64, s: i64| ((h * 60 + m) * 60 + s) * 1_000_000_000;
         assert_eq!(
             time_of_day("12:30:00.5", false),
-            Ok(LitKind::TimeOfDay { nanos: ns(12, 30, 0) + 500_000_000, long: false })
+            Ok(LitKind::TimeOfDay {
+                nanos: ns(12, 30, 0) + 500_000_000,
+                long: false
+            })
         );
         assert_eq!(
             time_of_day("23:59:59", true),
-            Ok(LitKind::TimeOfDay { nanos: ns(23, 59, 59), long: true })
+            Ok(LitKind::TimeOfDay {
+                nanos: ns(23, 59, 59),
+                long: true
+            })
         );
         assert_eq!(
             time_of_day("08:15", false),
-            Ok(LitKind::TimeOfDay { nanos: ns(8, 15, 0), long: false })
+            Ok(LitKind::TimeOfDay {
+                nanos: ns(8, 15, 0),
+                long: false
+            })
         );
-        for s in ["24:00:00", "12:60:00", "12:00:60", "12", "1:2:3:4", "12:00:00.", "a:b:c"] {
-            assert!(matches!(time_of_day(s, false), Err(LitError::Malformed(_))), "{s}");
+        for s in [
+            "24:00:00",
+            "12:60:00",
+            "12:00:60",
+            "12",
+            "1:2:3:4",
+            "12:00:00.",
+            "a:b:c",
+        ] {
+            assert!(
+                matches!(time_of_day(s, false), Err(LitError::Malformed(_))),
+                "{s}"
+            );
         }
     }
 
@@ -343,7 +416,13 @@ mod tests {
                 long: false
             })
         );
-        assert!(matches!(date_time("2024-01-31", false), Err(LitError::Malformed(_))));
-        assert!(matches!(date_time("2024-02-30-00:00:00", false), Err(LitError::Malformed(_))));
+        assert!(matches!(
+            date_time("2024-01-31", false),
+            Err(LitError::Malformed(_))
+        ));
+        assert!(matches!(
+            date_time("2024-02-30-00:00:00", false),
+            Err(LitError::Malformed(_))
+        ));
     }
 }

@@ -92,7 +92,9 @@ pub fn decode_address(text: &str, span: Span) -> Result<DirectAddress, String> {
 pub fn decode_partial(text: &str) -> Result<(AddrSize, u32), String> {
     let (letters, rest) = split(text);
     let bad = || {
-        format!("invalid partial access `{text}`: expected `%X`, `%B`, `%W`, `%D` or `%L` and a number")
+        format!(
+            "invalid partial access `{text}`: expected `%X`, `%B`, `%W`, `%D` or `%L` and a number"
+        )
     };
     let size = match letters.as_bytes() {
         [c] => size_of(*c).ok_or_else(bad)?,
@@ -117,14 +119,35 @@ mod tests {
 
     #[test]
     fn addresses() {
-        assert_eq!(addr("%IX0.1"), Ok((Area::Input, AddrSize::Bit, vec![0, 1], false)));
-        assert_eq!(addr("%QW4"), Ok((Area::Output, AddrSize::Word, vec![4], false)));
-        assert_eq!(addr("%md48"), Ok((Area::Memory, AddrSize::DWord, vec![48], false)));
-        assert_eq!(addr("%IX1.2.3"), Ok((Area::Input, AddrSize::Bit, vec![1, 2, 3], false)));
-        assert_eq!(addr("%I0.1"), Ok((Area::Input, AddrSize::None, vec![0, 1], false)));
-        assert_eq!(addr("%QL7"), Ok((Area::Output, AddrSize::LWord, vec![7], false)));
+        assert_eq!(
+            addr("%IX0.1"),
+            Ok((Area::Input, AddrSize::Bit, vec![0, 1], false))
+        );
+        assert_eq!(
+            addr("%QW4"),
+            Ok((Area::Output, AddrSize::Word, vec![4], false))
+        );
+        assert_eq!(
+            addr("%md48"),
+            Ok((Area::Memory, AddrSize::DWord, vec![48], false))
+        );
+        assert_eq!(
+            addr("%IX1.2.3"),
+            Ok((Area::Input, AddrSize::Bit, vec![1, 2, 3], false))
+        );
+        assert_eq!(
+            addr("%I0.1"),
+            Ok((Area::Input, AddrSize::None, vec![0, 1], false))
+        );
+        assert_eq!(
+            addr("%QL7"),
+            Ok((Area::Output, AddrSize::LWord, vec![7], false))
+        );
         assert_eq!(addr("%I*"), Ok((Area::Input, AddrSize::None, vec![], true)));
-        assert_eq!(addr("%QW*"), Ok((Area::Output, AddrSize::Word, vec![], true)));
+        assert_eq!(
+            addr("%QW*"),
+            Ok((Area::Output, AddrSize::Word, vec![], true))
+        );
     }
 
     #[test]

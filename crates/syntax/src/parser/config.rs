@@ -3,8 +3,8 @@
 
 use super::Parser;
 use crate::ast::{
-    AccessDecl, AccessDirection, ConfigInit, Configuration, Ident, ProgramConfig, Resource,
-    Retain, TaskDecl, TaskProp,
+    AccessDecl, AccessDirection, ConfigInit, Configuration, Ident, ProgramConfig, Resource, Retain,
+    TaskDecl, TaskProp,
 };
 use crate::lexer::{Kw, Tok};
 
@@ -186,11 +186,9 @@ impl Parser<'_> {
         let name = self.expect_ident("the name of the task");
         let mut props = Vec::new();
         if self.expect(Tok::LParen, "after the task name") && !self.eat(Tok::RParen) {
-            loop {
-                let Some(prop) = self.expect_ident("a task property (INTERVAL, PRIORITY or SINGLE)")
-                else {
-                    break;
-                };
+            while let Some(prop) =
+                self.expect_ident("a task property (INTERVAL, PRIORITY or SINGLE)")
+            {
                 self.expect(Tok::ColonEq, "after the task property");
                 let value = self.expr();
                 props.push(TaskProp {

@@ -76,7 +76,10 @@ impl Parser<'_> {
                 self.found()
             ),
         )
-        .with_label(self.tok_span(opener), format!("this `{open}` is not closed"));
+        .with_label(
+            self.tok_span(opener),
+            format!("this `{open}` is not closed"),
+        );
         self.emit_here(d);
         // A closer of another kind that closes nothing open (`END_WHILE`
         // for `END_IF`) is taken as a misspelling of this one.

@@ -53,7 +53,10 @@ impl Parser<'_> {
                 self.found()
             ),
         )
-        .with_label(self.tok_span(opener), format!("this `{open}` is not closed"));
+        .with_label(
+            self.tok_span(opener),
+            format!("this `{open}` is not closed"),
+        );
         self.emit_here(d);
     }
 
@@ -167,7 +170,11 @@ impl Parser<'_> {
             None
         };
         if !self.eat(Tok::Colon) {
-            let after = if location.is_some() { "the location" } else { "the variable name" };
+            let after = if location.is_some() {
+                "the location"
+            } else {
+                "the variable name"
+            };
             self.expected(&format!("`:` after {after}"));
             // `x INT;`: go on with the type as if the colon were there.
             if !self.can_start_type() {

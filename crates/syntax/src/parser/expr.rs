@@ -6,9 +6,7 @@
 
 use super::address::{decode_address, decode_partial};
 use super::Parser;
-use crate::ast::{
-    Arg, ArgDir, BinaryOp, Expr, ExprKind, Ident, LitKind, Literal, UnaryOp,
-};
+use crate::ast::{Arg, ArgDir, BinaryOp, Expr, ExprKind, Ident, LitKind, Literal, UnaryOp};
 use crate::lexer::{Kw, Tok};
 use automat_base::{Code, Diagnostic, Span};
 
@@ -95,7 +93,9 @@ impl Parser<'_> {
             // `NOT(x)` is the operator on a parenthesis; only a formal
             // argument makes it a call.
             Tok::Kw(Kw::Not) => {
-                self.nth(1) == Tok::LParen && is_identish(self.nth(2)) && self.nth(3) == Tok::ColonEq
+                self.nth(1) == Tok::LParen
+                    && is_identish(self.nth(2))
+                    && self.nth(3) == Tok::ColonEq
             }
             _ => false,
         }
@@ -437,7 +437,10 @@ impl Parser<'_> {
         match self.peek() {
             Tok::Lit(i) => matches!(
                 self.lits.get(i as usize),
-                Some(Literal { kind: LitKind::Int(_), ty: None })
+                Some(Literal {
+                    kind: LitKind::Int(_),
+                    ty: None
+                })
             ),
             _ => false,
         }

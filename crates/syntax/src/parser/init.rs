@@ -71,10 +71,7 @@ impl Parser<'_> {
     fn struct_init(&mut self) -> Initializer {
         let start = self.bump().start;
         let mut fields = Vec::new();
-        loop {
-            let Some(name) = self.expect_ident("a member name") else {
-                break;
-            };
+        while let Some(name) = self.expect_ident("a member name") {
             self.expect(Tok::ColonEq, "after the member name");
             let value = self.initializer();
             fields.push(FieldInit {

@@ -299,10 +299,21 @@ impl<'a> Parser<'a> {
 
     /// Enters one nesting level; false (after an error) when too deep.
     fn enter(&mut self) -> bool {
+        self.enter_or("nesting too deep")
+    }
+
+    /// Adds one link to a chain (`a + b + ...`, `a.b.c...`): each link is
+    /// one more level of the tree, so it counts against the same limit,
+    /// which bounds the depth of every tree the parser returns.
+    fn enter_link(&mut self) -> bool {
+        self.enter_or("expression too long: split it, as each operator or access in a row is one level of")
+    }
+
+    fn enter_or(&mut self, what: &str) -> bool {
         if self.depth >= MAX_DEPTH {
             if !self.deep_reported {
                 self.deep_reported = true;
-                let msg = format!("nesting too deep: more than {MAX_DEPTH} levels");
+                let msg = format!("{what} nesting, and the limit is {MAX_DEPTH} levels");
                 self.error_here(msg);
             }
             return false;
@@ -337,6 +348,11 @@ impl<'a> Parser<'a> {
 
     fn leave(&mut self) {
         self.depth = self.depth.saturating_sub(1);
+    }
+
+    /// Leaves the levels entered by `n` chain links.
+    fn leave_links(&mut self, n: u32) {
+        self.depth = self.depth.saturating_sub(n);
     }
 
     fn in_frames(&self, k: Kw) -> bool {

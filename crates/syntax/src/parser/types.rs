@@ -155,10 +155,7 @@ impl Parser<'_> {
     fn enum_type(&mut self, base: Option<Ident>, start: u32) -> TypeSpec {
         self.bump();
         let mut values = Vec::new();
-        loop {
-            let Some(name) = self.expect_ident("an enumeration value") else {
-                break;
-            };
+        while let Some(name) = self.expect_ident("an enumeration value") {
             let value = if self.eat(Tok::ColonEq) {
                 Some(self.expr())
             } else {

@@ -26,7 +26,11 @@ pub fn parse(src: &str) -> Out {
 /// Parses and asserts there is no diagnostic.
 pub fn ok(src: &str) -> Out {
     let out = parse(src);
-    assert!(out.diags.is_empty(), "unexpected diagnostics: {:#?}", out.diags);
+    assert!(
+        out.diags.is_empty(),
+        "unexpected diagnostics: {:#?}",
+        out.diags
+    );
     out
 }
 
@@ -254,7 +258,9 @@ impl Out {
                         None => self.name(v.name),
                     })
                     .collect();
-                let b = base.map(|b| format!("{} ", self.name(b))).unwrap_or_default();
+                let b = base
+                    .map(|b| format!("{} ", self.name(b)))
+                    .unwrap_or_default();
                 format!("{b}({})", v.join(","))
             }
             TypeSpec::Struct { members, .. } => {
