@@ -10,10 +10,11 @@
 
 mod call;
 mod expr;
+pub mod resolve;
 mod stdcall;
 mod stmt;
 
-use crate::model::{Model, Pou, Var};
+use crate::model::{Model, Pou, Section, Var};
 use crate::names::ty_name;
 use crate::ops::Ty;
 use crate::stdlib::{self, Sig};
@@ -21,6 +22,7 @@ use crate::types::{PouId, TypeId, TypeKind};
 use automat_base::{Code, Diagnostic, Interner, Span, Symbol};
 use automat_syntax::ast::{self, PouKind};
 use rustc_hash::FxHashMap;
+use std::cell::Cell;
 use std::rc::Rc;
 
 /// Deepest expression nesting typed, and deepest statement nesting checked
@@ -81,6 +83,9 @@ pub struct Checker<'m> {
     pub(crate) stmt_depth: u32,
     /// "Nested too deeply" was reported for this POU (once is enough).
     pub(crate) deep_reported: bool,
+    /// Which variables of the current POU a name in its body refers to
+    /// (indexed like its `VarTable`), for W001.
+    used: Vec<Cell<bool>>,
 }
 
 impl<'m> Checker<'m> {
@@ -101,6 +106,7 @@ impl<'m> Checker<'m> {
             depth: 0,
             stmt_depth: 0,
             deep_reported: false,
+            used: Vec::new(),
         }
     }
 
@@ -111,8 +117,38 @@ impl<'m> Checker<'m> {
         self.depth = 0;
         self.stmt_depth = 0;
         self.deep_reported = false;
+        let model = self.model;
+        let Some(info) = model.pou(id) else {
+            return;
+        };
+        self.used = info.vars.vars.iter().map(|_| Cell::new(false)).collect();
         match &pou.body {
             ast::Body::St(stmts) => self.stmts(stmts),
+        }
+        self.warn_unused(info);
+    }
+
+    /// W001 for internal variables nothing refers to. Only the private state
+    /// of functions and function blocks and every VAR_TEMP: a program's VAR
+    /// is reachable from outside (monitoring, access paths) and parameters
+    /// are an interface; located variables are I/O mappings.
+    fn warn_unused(&mut self, pou: &'m Pou) {
+        let private = |s: Section| match pou.kind {
+            PouKind::Program => s == Section::Temp,
+            _ => matches!(s, Section::Local | Section::Temp),
+        };
+        for (i, v) in pou.vars.vars.iter().enumerate() {
+            let used = self.used.get(i).is_some_and(Cell::get);
+            if !used && private(v.section) && v.location.is_none() && !v.constant {
+                let (name, owner) = (v.name, pou.name);
+                self.warn(Code::W001, v.span, |c| {
+                    format!(
+                        "variable `{}` of `{}` is never used",
+                        c.name(name),
+                        c.name(owner)
+                    )
+                });
+            }
         }
     }
 
@@ -121,6 +157,14 @@ impl<'m> Checker<'m> {
         if !self.silent {
             let m = msg(self);
             self.diags.push(Diagnostic::error(code, span, m));
+        }
+    }
+
+    /// Emits a diagnostic with labels or notes, built only when someone listens.
+    pub(crate) fn diag(&mut self, make: impl FnOnce(&Self) -> Diagnostic) {
+        if !self.silent {
+            let d = make(self);
+            self.diags.push(d);
         }
     }
 
@@ -177,8 +221,14 @@ impl<'m> Checker<'m> {
     pub(crate) fn var(&self, sym: Symbol) -> Option<(&'m Var, bool)> {
         match self.scope {
             Scope::Pou(id) => {
-                if let Some(v) = self.model.pou(id).and_then(|p| p.vars.get(sym)) {
-                    return Some((v, true));
+                let vars = self.model.pou(id).map(|p| &p.vars);
+                if let Some(i) = vars.and_then(|t| t.index(sym)) {
+                    if let Some(flag) = self.used.get(i as usize) {
+                        flag.set(true);
+                    }
+                    if let Some(v) = vars.and_then(|t| t.vars.get(i as usize)) {
+                        return Some((v, true));
+                    }
                 }
             }
             Scope::Config(c, r) => {
@@ -205,7 +255,11 @@ impl<'m> Checker<'m> {
 
     /// What a name denotes when it is not a variable.
     pub(crate) fn lookup(&mut self, sym: Symbol) -> Named<'m> {
-        if self.var(sym).is_some() {
+        // (A function's return value shares the function's name: the POU wins here.)
+        if self
+            .var(sym)
+            .is_some_and(|(v, _)| v.section != crate::model::Section::Return)
+        {
             return Named::Var;
         }
         if let Some((id, p)) = self.model.pou_named(sym) {
