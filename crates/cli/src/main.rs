@@ -6,6 +6,7 @@
 
 mod cmd_check;
 mod cmd_explain;
+mod cmd_run;
 mod files;
 
 use clap::{Parser, Subcommand};
@@ -26,6 +27,7 @@ struct Cli {
 enum Command {
     Check(cmd_check::CheckArgs),
     Explain(cmd_explain::ExplainArgs),
+    Run(cmd_run::RunArgs),
 }
 
 /// Exit status of a command.
@@ -33,6 +35,8 @@ pub enum Outcome {
     Ok,
     ProgramErrors,
     BadInput,
+    /// A runtime fault stopped the PLC (`automat run`).
+    Fault,
 }
 
 fn main() -> ExitCode {
@@ -47,10 +51,12 @@ fn main() -> ExitCode {
     let outcome = match cli.command {
         Command::Check(args) => cmd_check::run(&args),
         Command::Explain(args) => cmd_explain::run(&args),
+        Command::Run(args) => cmd_run::run_cmd(&args),
     };
     ExitCode::from(match outcome {
         Outcome::Ok => 0,
         Outcome::ProgramErrors => 1,
         Outcome::BadInput => 2,
+        Outcome::Fault => 3,
     })
 }

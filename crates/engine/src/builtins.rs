@@ -72,7 +72,14 @@ pub fn call(ctx: &mut Ctx, op: Builtin, dst: Option<Reg>, args: &[Reg]) -> R {
                 f32::from_bits(ctx.get(a(0)?) as u32) as f64
             };
             let y = math(m, x);
-            set(ctx, if wide { y.to_bits() } else { (y as f32).to_bits() as u64 });
+            set(
+                ctx,
+                if wide {
+                    y.to_bits()
+                } else {
+                    (y as f32).to_bits() as u64
+                },
+            );
         }
         Builtin::Pow(wide) | Builtin::PowInt(wide) => {
             let b = ctx.get(a(0)?);
@@ -86,16 +93,22 @@ pub fn call(ctx: &mut Ctx, op: Builtin, dst: Option<Reg>, args: &[Reg]) -> R {
                     f32::from_bits(e as u32),
                 )
                 .to_bits() as u64,
-                (_, true) => automat_iec::arith::expt_lreal_int(f64::from_bits(b), e as i64).to_bits(),
-                (_, false) => {
-                    automat_iec::arith::expt_real_int(f32::from_bits(b as u32), e as i64).to_bits() as u64
+                (_, true) => {
+                    automat_iec::arith::expt_lreal_int(f64::from_bits(b), e as i64).to_bits()
                 }
+                (_, false) => automat_iec::arith::expt_real_int(f32::from_bits(b as u32), e as i64)
+                    .to_bits() as u64,
             };
             set(ctx, r);
         }
         Builtin::Convert(from, to) => {
             let v = to_value(ctx.get(a(0)?), from);
             let r = automat_iec::convert(&v, to).map_err(iec)?;
+            set(ctx, from_value(&r));
+        }
+        Builtin::Trunc(from, to) => {
+            let v = to_value(ctx.get(a(0)?), from);
+            let r = automat_iec::trunc(&v, to).map_err(iec)?;
             set(ctx, from_value(&r));
         }
         Builtin::ToString(from, wide) => {
@@ -173,7 +186,10 @@ fn write(ctx: &mut Ctx, d: u32, cap: u32, v: &Value) -> R {
         Value::WStr(s) => mem::write_wstr(ctx.image, d, cap, s),
         _ => None,
     };
-    ok.ok_or((FaultKind::Function, format!("string store at {d} outside the image")))
+    ok.ok_or((
+        FaultKind::Function,
+        format!("string store at {d} outside the image"),
+    ))
 }
 
 /// Character units of STRING (u8) and WSTRING (u16).
@@ -213,7 +229,8 @@ fn strings<C: Unit>(ctx: &mut Ctx, s: StrFn, dst: Option<Reg>, args: &[Reg], _wi
     let rd = |ctx: &Ctx, i: usize| -> Result<Vec<C>, (FaultKind, String)> {
         Ok(C::read(ctx.image, ctx.get(a(i)?) as u32))
     };
-    let int = |ctx: &Ctx, i: usize| -> Result<i64, (FaultKind, String)> { Ok(ctx.get(a(i)?) as i64) };
+    let int =
+        |ctx: &Ctx, i: usize| -> Result<i64, (FaultKind, String)> { Ok(ctx.get(a(i)?) as i64) };
     // Functions with a scalar result.
     match s {
         StrFn::Len => {
@@ -246,7 +263,9 @@ fn strings<C: Unit>(ctx: &mut Ctx, s: StrFn, dst: Option<Reg>, args: &[Reg], _wi
         StrFn::Right => st::right(&rd(ctx, 2)?, int(ctx, 3)?).map_err(iec)?,
         StrFn::Mid => st::mid(&rd(ctx, 2)?, int(ctx, 3)?, int(ctx, 4)?).map_err(iec)?,
         StrFn::Concat => {
-            let parts = (2..args.len()).map(|i| rd(ctx, i)).collect::<Result<Vec<_>, _>>()?;
+            let parts = (2..args.len())
+                .map(|i| rd(ctx, i))
+                .collect::<Result<Vec<_>, _>>()?;
             let refs: Vec<&[C]> = parts.iter().map(Vec::as_slice).collect();
             st::concat(&refs)
         }
@@ -258,6 +277,8 @@ fn strings<C: Unit>(ctx: &mut Ctx, s: StrFn, dst: Option<Reg>, args: &[Reg], _wi
         StrFn::FromChar => vec![C::from_code(ctx.get(a(2)?))],
         StrFn::Len | StrFn::Find | StrFn::Compare => Vec::new(),
     };
-    C::write(ctx.image, d, cap, &out)
-        .ok_or((FaultKind::Function, format!("string store at {d} outside the image")))
+    C::write(ctx.image, d, cap, &out).ok_or((
+        FaultKind::Function,
+        format!("string store at {d} outside the image"),
+    ))
 }

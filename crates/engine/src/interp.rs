@@ -15,7 +15,6 @@ pub struct Frame {
 
 /// Mutable state of one run, passed to the builtins.
 pub struct Ctx<'a> {
-    pub program: &'a Program,
     pub image: &'a mut [u8],
     pub regs: &'a mut [u64],
     pub base: usize,
@@ -46,7 +45,13 @@ impl Ctx<'_> {
     }
 }
 
-pub fn fault(program: &Program, func: u32, site: Option<u32>, kind: FaultKind, message: String) -> Fault {
+pub fn fault(
+    program: &Program,
+    func: u32,
+    site: Option<u32>,
+    kind: FaultKind,
+    message: String,
+) -> Fault {
     let site = site
         .and_then(|s| program.sites.get(s as usize).cloned())
         .unwrap_or_else(|| Site {
@@ -120,7 +125,12 @@ fn cmp<T: PartialOrd>(c: Cmp, a: T, b: T) -> u64 {
     }) as u64
 }
 
-fn float<T: std::ops::Add<Output = T> + std::ops::Sub<Output = T> + std::ops::Mul<Output = T> + std::ops::Div<Output = T>>(
+fn float<
+    T: std::ops::Add<Output = T>
+        + std::ops::Sub<Output = T>
+        + std::ops::Mul<Output = T>
+        + std::ops::Div<Output = T>,
+>(
     op: FloatOp,
     a: T,
     b: T,
@@ -154,7 +164,6 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
         return Err(bad(f, format!("no function {f}")));
     };
     let mut ctx = Ctx {
-        program,
         image,
         regs,
         base: windows.get(f as usize).copied().unwrap_or(0) as usize,
@@ -183,7 +192,9 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                 let at = addr(&ctx, this, a);
                 match mem::load(ctx.image, at, ty) {
                     Some(v) => ctx.set(dst, v),
-                    None => return Err(bad(f, format!("load of {ty:?} at {at} outside the image"))),
+                    None => {
+                        return Err(bad(f, format!("load of {ty:?} at {at} outside the image")))
+                    }
                 }
             }
             Inst::Store { src, ty, addr: a } => {
@@ -211,10 +222,16 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
             }
             Inst::AddrOf { dst, addr: a } => ctx.set(dst, addr(&ctx, this, a) as u64),
             Inst::Copy { dst, src, len } => {
-                let (d, s) = (addr(&ctx, this, dst) as usize, addr(&ctx, this, src) as usize);
+                let (d, s) = (
+                    addr(&ctx, this, dst) as usize,
+                    addr(&ctx, this, src) as usize,
+                );
                 let n = len as usize;
                 if d + n > ctx.image.len() || s + n > ctx.image.len() {
-                    return Err(bad(f, format!("copy of {n} bytes {s} -> {d} outside the image")));
+                    return Err(bad(
+                        f,
+                        format!("copy of {n} bytes {s} -> {d} outside the image"),
+                    ));
                 }
                 ctx.image.copy_within(s..s + n, d);
             }
@@ -230,7 +247,20 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                 };
                 ctx.set(dst, r as u64);
             }
-            Inst::Div { signed, dst, a, b, site } | Inst::Rem { signed, dst, a, b, site } => {
+            Inst::Div {
+                signed,
+                dst,
+                a,
+                b,
+                site,
+            }
+            | Inst::Rem {
+                signed,
+                dst,
+                a,
+                b,
+                site,
+            } => {
                 let (x, y) = (ctx.i(a), ctx.i(b));
                 let is_div = matches!(inst, Inst::Div { .. });
                 if y == 0 {
@@ -254,10 +284,20 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
             Inst::Neg { dst, src } => ctx.set(dst, ctx.i(src).wrapping_neg() as u64),
             Inst::Not { dst, src } => ctx.set(dst, !ctx.get(src)),
             Inst::Wrap { dst, src, ty } => ctx.set(dst, wrap(ctx.i(src), ty) as u64),
-            Inst::Shift { op, width, dst, a, n } => {
-                ctx.set(dst, shift(op, width, ctx.i(a), ctx.i(n)) as u64)
-            }
-            Inst::ICmp { cmp: c, signed, dst, a, b } => {
+            Inst::Shift {
+                op,
+                width,
+                dst,
+                a,
+                n,
+            } => ctx.set(dst, shift(op, width, ctx.i(a), ctx.i(n)) as u64),
+            Inst::ICmp {
+                cmp: c,
+                signed,
+                dst,
+                a,
+                b,
+            } => {
                 let r = if signed {
                     cmp(c, ctx.i(a), ctx.i(b))
                 } else {
@@ -265,14 +305,26 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                 };
                 ctx.set(dst, r);
             }
-            Inst::Float { op, wide, dst, a, b } => {
+            Inst::Float {
+                op,
+                wide,
+                dst,
+                a,
+                b,
+            } => {
                 if wide {
                     ctx.set(dst, float(op, ctx.f64(a), ctx.f64(b)).to_bits());
                 } else {
                     ctx.set(dst, float(op, ctx.f32(a), ctx.f32(b)).to_bits() as u64);
                 }
             }
-            Inst::FCmp { cmp: c, wide, dst, a, b } => {
+            Inst::FCmp {
+                cmp: c,
+                wide,
+                dst,
+                a,
+                b,
+            } => {
                 let r = if wide {
                     cmp(c, ctx.f64(a), ctx.f64(b))
                 } else {
@@ -287,12 +339,22 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                     ctx.set(dst, (ctx.f64(src) as f32).to_bits() as u64);
                 }
             }
-            Inst::Check { kind, val, lo, hi, site } => {
+            Inst::Check {
+                kind,
+                val,
+                lo,
+                hi,
+                site,
+            } => {
                 let v = ctx.i(val);
                 if v < lo || v > hi {
                     let (k, what) = match kind {
-                        automat_ir::code::CheckKind::Index => (FaultKind::IndexOutOfBounds, "index"),
-                        automat_ir::code::CheckKind::Subrange => (FaultKind::SubrangeViolation, "value"),
+                        automat_ir::code::CheckKind::Index => {
+                            (FaultKind::IndexOutOfBounds, "index")
+                        }
+                        automat_ir::code::CheckKind::Subrange => {
+                            (FaultKind::SubrangeViolation, "value")
+                        }
                     };
                     return Err(fault(
                         program,
@@ -304,7 +366,13 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                 }
             }
             Inst::Now { dst } => ctx.set(dst, now as u64),
-            Inst::Builtin { op, dst, first, count, site } => {
+            Inst::Builtin {
+                op,
+                dst,
+                first,
+                count,
+                site,
+            } => {
                 let args = program
                     .funcs
                     .get(f as usize)
@@ -316,9 +384,15 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
             }
             Inst::Jump { target } => pc = target,
             Inst::Branch { cond, then, els } => pc = if ctx.get(cond) != 0 { then } else { els },
-            Inst::Call { func: callee, this: t } => {
+            Inst::Call {
+                func: callee,
+                this: t,
+            } => {
                 if stack.len() == stack.capacity() {
-                    return Err(bad(f, format!("call depth exceeded calling function {callee} (recursion?)")));
+                    return Err(bad(
+                        f,
+                        format!("call depth exceeded calling function {callee} (recursion?)"),
+                    ));
                 }
                 let new_this = addr(&ctx, this, t);
                 stack.push(Frame { func: f, pc, this });
@@ -337,7 +411,11 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                     f = fr.func;
                     pc = fr.pc;
                     this = fr.this;
-                    code = program.funcs.get(f as usize).map(|x| x.code.as_slice()).unwrap_or(&[]);
+                    code = program
+                        .funcs
+                        .get(f as usize)
+                        .map(|x| x.code.as_slice())
+                        .unwrap_or(&[]);
                     ctx.base = windows.get(f as usize).copied().unwrap_or(0) as usize;
                 }
             },

@@ -41,7 +41,10 @@ pub fn read_str(image: &[u8], at: u32) -> Vec<u8> {
     let len = load(image, at, MemTy::U16).unwrap_or(0) as usize;
     let start = at as usize + 2;
     let end = (start + len).min(image.len());
-    image.get(start..end).map(<[u8]>::to_vec).unwrap_or_default()
+    image
+        .get(start..end)
+        .map(<[u8]>::to_vec)
+        .unwrap_or_default()
 }
 
 pub fn read_wstr(image: &[u8], at: u32) -> Vec<u16> {

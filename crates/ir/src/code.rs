@@ -158,6 +158,8 @@ pub enum Builtin {
     PowInt(bool),
     /// Elementary conversion between scalar register values.
     Convert(automat_iec::Elementary, automat_iec::Elementary),
+    /// `TRUNC`: a real to an integer, rounding toward zero.
+    Trunc(automat_iec::Elementary, automat_iec::Elementary),
     /// Conversion of a scalar to a string buffer: (dst, cap, value).
     ToString(automat_iec::Elementary, bool),
     /// Conversion of a string buffer to a scalar: (src).

@@ -136,7 +136,9 @@ impl V<'_> {
                 self.reg(a, I64)?;
                 self.reg(b, I64)
             }
-            Inst::Shift { width, dst, a, n, .. } => {
+            Inst::Shift {
+                width, dst, a, n, ..
+            } => {
                 if !matches!(width, 1 | 8 | 16 | 32 | 64) {
                     return Err(self.err(format!("shift width {width}")));
                 }
@@ -144,7 +146,12 @@ impl V<'_> {
                 self.reg(a, I64)?;
                 self.reg(n, I64)
             }
-            Inst::Div { dst, a, b, site, .. } | Inst::Rem { dst, a, b, site, .. } => {
+            Inst::Div {
+                dst, a, b, site, ..
+            }
+            | Inst::Rem {
+                dst, a, b, site, ..
+            } => {
                 self.site(site)?;
                 self.reg(dst, I64)?;
                 self.reg(a, I64)?;
@@ -159,12 +166,16 @@ impl V<'_> {
                 self.reg(dst, I64)?;
                 self.reg(src, I64)
             }
-            Inst::Float { wide, dst, a, b, .. } => {
+            Inst::Float {
+                wide, dst, a, b, ..
+            } => {
                 self.float(dst, wide)?;
                 self.float(a, wide)?;
                 self.float(b, wide)
             }
-            Inst::FCmp { wide, dst, a, b, .. } => {
+            Inst::FCmp {
+                wide, dst, a, b, ..
+            } => {
                 self.reg(dst, I64)?;
                 self.float(a, wide)?;
                 self.float(b, wide)
@@ -173,7 +184,9 @@ impl V<'_> {
                 self.float(dst, to_wide)?;
                 self.float(src, !to_wide)
             }
-            Inst::Check { val, lo, hi, site, .. } => {
+            Inst::Check {
+                val, lo, hi, site, ..
+            } => {
                 if lo > hi {
                     return Err(self.err(format!("empty check range {lo}..{hi}")));
                 }
@@ -196,8 +209,10 @@ impl V<'_> {
                         return Err(self.err(format!("r{r} is not a register")));
                     }
                 }
-                if let (Some(d), Builtin::Math(_, wide) | Builtin::Pow(wide) | Builtin::PowInt(wide)) =
-                    (dst, op)
+                if let (
+                    Some(d),
+                    Builtin::Math(_, wide) | Builtin::Pow(wide) | Builtin::PowInt(wide),
+                ) = (dst, op)
                 {
                     self.float(d, wide)?;
                 }

@@ -24,6 +24,7 @@
 
 pub mod clock;
 mod crc;
+mod engine;
 pub mod executor;
 pub mod io;
 pub mod path;
@@ -34,6 +35,9 @@ pub mod stats;
 pub mod timearg;
 pub mod trace;
 pub mod value;
+
+#[cfg(test)]
+mod testutil;
 
 pub use clock::{ClockMode, Monotonic, SystemClock};
 pub use executor::Executor;

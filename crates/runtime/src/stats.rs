@@ -88,7 +88,10 @@ mod tests {
         s.record(2_500);
         s.overruns = 1;
         s.task_runs = vec![("FAST".into(), 3), ("SLOW".into(), 1)];
-        assert_eq!((s.min_ns, s.avg_ns(), s.max_ns), (Some(1_000), Some(2_166), Some(3_000)));
+        assert_eq!(
+            (s.min_ns, s.avg_ns(), s.max_ns),
+            (Some(1_000), Some(2_166), Some(3_000))
+        );
         assert_eq!(
             s.to_string(),
             "scans: 3, scan time min/avg/max: 1.000us/2.166us/3.000us, overruns: 1, task runs: FAST=3 SLOW=1"

@@ -7,7 +7,9 @@ use automat_iec::{parse_literal, Elementary, Value};
 pub fn parse_duration(text: &str) -> Result<i64, String> {
     match parse_literal(text, Elementary::Time) {
         Ok(Value::Duration(ns, _)) if ns >= 0 => Ok(ns),
-        Ok(_) => Err(format!("`{text}` is negative; a duration must be 0 or more")),
+        Ok(_) => Err(format!(
+            "`{text}` is negative; a duration must be 0 or more"
+        )),
         Err(e) => Err(format!(
             "{} (write a duration like `10ms` or `T#1s500ms`)",
             e.message
@@ -42,7 +44,9 @@ mod tests {
     #[test]
     fn refused_forms() {
         assert!(parse_duration("T#-5s").is_err_and(|e| e.contains("negative")));
-        assert!(parse_duration("10").is_err_and(|e| e.starts_with("`10` is not a valid TIME literal")));
+        assert!(
+            parse_duration("10").is_err_and(|e| e.starts_with("`10` is not a valid TIME literal"))
+        );
         assert!(parse_duration("").is_err());
         assert!(parse_duration("ms").is_err());
     }

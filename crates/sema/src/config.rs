@@ -91,10 +91,14 @@ fn tasks(ck: &mut Checker, res: &ast::Resource) -> Vec<Task> {
     for t in &res.tasks {
         if let Some(first) = out.iter().find(|x| x.name == t.name.sym) {
             let first = first.span;
-            ck.err(Code::E023, t.name.span, |c| {
-                format!("task `{}` is declared twice", c.name(t.name.sym))
+            ck.diag(|c| {
+                Diagnostic::error(
+                    Code::E023,
+                    t.name.span,
+                    format!("task `{}` is declared twice", c.name(t.name.sym)),
+                )
+                .with_label(first, "first declared here")
             });
-            let _ = first;
             continue;
         }
         let mut task = Task {
@@ -166,12 +170,18 @@ fn tasks(ck: &mut Checker, res: &ast::Resource) -> Vec<Task> {
 fn programs(ck: &mut Checker, res: &ast::Resource, tasks: &[Task]) -> Vec<ProgramInstance> {
     let mut out: Vec<ProgramInstance> = Vec::new();
     for pc in &res.programs {
-        if out.iter().any(|x| x.name == pc.name.sym) {
-            ck.err(Code::E023, pc.name.span, |c| {
-                format!(
-                    "program instance `{}` is declared twice",
-                    c.name(pc.name.sym)
+        if let Some(first) = out.iter().find(|x| x.name == pc.name.sym) {
+            let first = first.span;
+            ck.diag(|c| {
+                Diagnostic::error(
+                    Code::E023,
+                    pc.name.span,
+                    format!(
+                        "program instance `{}` is declared twice",
+                        c.name(pc.name.sym)
+                    ),
                 )
+                .with_label(first, "first declared here")
             });
             continue;
         }

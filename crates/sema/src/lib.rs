@@ -3,11 +3,11 @@
 //! diagnostics and the semantic [`Model`] that lowering consumes.
 //!
 //! # Phases
-//! 1. [`decl`]: collect POUs, types and globals of every file; resolve types
+//! 1. `decl`: collect POUs, types and globals of every file; resolve types
 //!    and the constants they depend on (on demand, cycles reported); check
 //!    initial values, locations and VAR_EXTERNAL.
 //! 2. [`body`]: type every statement and expression of every POU body.
-//! 3. [`config`]: tasks, program instances, connections, access paths.
+//! 3. `config`: tasks, program instances, connections, access paths.
 //!
 //! # Invariants
 //! - [`check`] never panics and always terminates, whatever the AST: no
@@ -20,11 +20,38 @@
 //! - No string formatting on the clean path: messages are built only when a
 //!   diagnostic is emitted.
 //! - The model holds no AST copies: POUs refer to their items by index.
+//!
+//! # Decisions where the standard is silent or tools differ
+//! (The typing rules themselves are in [`lattice`].)
+//! - Project-level `VAR_GLOBAL CONSTANT`s are visible in every POU (they size
+//!   arrays and strings of libraries); global *variables* are visible in a
+//!   POU only through VAR_EXTERNAL (E020 otherwise), whose type must match
+//!   (E025). A program's own VAR_GLOBAL also serves VAR_EXTERNAL.
+//! - A user POU or type named like a standard function or function block
+//!   replaces it (vendor libraries ship their own TON or LIMIT).
+//! - A bare enumeration value shared by several enumerations takes the
+//!   expected type, else the first declared; `Color#Red` and CODESYS's
+//!   `Color.Red` are accepted.
+//! - 0 and 1 fit BOOL in assignments, never as conditions (E032).
+//! - A typed constant converted to a narrower type it fits is a warning
+//!   (W003), not an error; a variable never is.
+//! - Initial values are constant expressions (E070 otherwise).
+//! - Positional arguments bind inputs and in-outs in declaration order, then
+//!   outputs. `EN`/`ENO` are accepted on every call and every instance
+//!   (`inst.ENO`). The counters accept `RESET` for `R`.
+//! - `TRUNC` returns DINT (`TRUNC_<INT>` picks another type).
+//! - Statements after RETURN (or EXIT/CONTINUE in a loop) are W002.
+//!
+//! # For lowering
+//! [`type_of`] types any expression of a POU body; [`resolve_name`] and
+//! [`resolve_callee`] say what a name or a callee denotes; the standard
+//! function table ([`stdlib::lookup`], [`stdlib::StdOp`]) says what a
+//! standard call does.
 
 pub mod body;
-pub mod config;
+mod config;
 pub mod convert;
-pub mod decl;
+mod decl;
 pub mod lattice;
 pub mod literal;
 pub mod model;
@@ -39,6 +66,7 @@ pub use model::Model;
 use automat_base::{Diagnostic, Interner, SourceMap};
 use automat_syntax::ast::{Expr, SourceUnit};
 
+pub use body::resolve::{resolve_callee, resolve_name, CallTarget, NameRef};
 pub use body::{Checker, Scope};
 pub use ops::{Ty, Typed};
 pub use types::{PouId, TypeId};

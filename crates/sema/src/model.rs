@@ -8,7 +8,7 @@
 //! - Variables of a POU are in declaration order, the function's return
 //!   variable (section [`Section::Return`]) first, which is also memory order
 //!   for lowering. `by_name` maps each name to its index; a duplicate
-//!   declaration (reported) keeps the first.
+//!   declaration (reported) is left out.
 //! - Initial values are folded ([`Init`]); a variable without an explicit one
 //!   inherits its alias type's initial value; `None` means the type's default.
 //! - POUs keep a reference to their AST ([`AstRef`]) instead of copies of it.

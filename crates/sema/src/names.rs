@@ -133,6 +133,16 @@ pub fn ty_name(types: &TypeTable, interner: &Interner, ty: Ty) -> String {
     }
 }
 
+/// A value for messages: `the value 5`, `the string 'abc'`, `a value of type DINT`.
+pub fn value_desc(types: &TypeTable, interner: &Interner, t: &crate::ops::Typed) -> String {
+    let shown = || t.value.as_ref().map_or_else(String::new, |v| v.show());
+    match t.ty {
+        Ty::AnyInt | Ty::AnyReal => format!("the value {}", shown()),
+        Ty::AnyStr { .. } => format!("the string {}", shown()),
+        ty => format!("a value of type {}", ty_name(types, interner, ty)),
+    }
+}
+
 /// A direct address as written: `%IX0.1`, `%QW4`, `%I*`.
 pub fn address_text(a: &DirectAddress) -> String {
     let mut s = String::from("%");

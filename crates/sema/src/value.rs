@@ -217,8 +217,9 @@ fn compare(l: &Value, r: &Value) -> Option<std::cmp::Ordering> {
     }
 }
 
-/// Folds a unary operator. `ty` is the operand's elementary type when typed
-/// (NOT of an unsigned or bit-string value keeps to its width).
+/// Folds a unary operator. `ty` is the operand's elementary type when typed,
+/// or the expected type of an untyped operand (NOT of an unsigned or
+/// bit-string value keeps to its width: `NOT 16#0F` for a BYTE is 16#F0).
 pub fn unary(op: UnaryOp, v: &Value, ty: Option<Elem>) -> Result<Option<Value>, FoldError> {
     Ok(Some(match (op, v) {
         (UnaryOp::Plus, v) => v.clone(),

@@ -278,7 +278,13 @@ VAR i : INT; t : TON; p : Point; END_VAR
     Q();
     i := p.x(1);
 END_PROGRAM",
-        &[("E054", 9), ("E054", 10), ("E054", 11), ("E054", 12), ("E054", 13)],
+        &[
+            ("E054", 9),
+            ("E054", 10),
+            ("E054", 11),
+            ("E054", 12),
+            ("E054", 13),
+        ],
     );
 }
 
@@ -310,5 +316,19 @@ VAR x : ARRAY[1..5] OF INT; y : ARRAY[0..2] OF REAL; d : DINT; END_VAR
     d := Sum(a := y);
 END_PROGRAM",
         &[("E052", 11)],
+    );
+}
+
+#[test]
+fn recursive_function_calls_itself_by_name() {
+    clean(
+        "FUNCTION Fact : DINT
+VAR_INPUT n : DINT; END_VAR
+    IF n <= 1 THEN
+        Fact := 1;
+    ELSE
+        Fact := n * Fact(n - 1);
+    END_IF;
+END_FUNCTION",
     );
 }

@@ -222,7 +222,13 @@ VAR_GLOBAL
     y AT %Q* : BOOL;
     z AT %QX1.0 : BOOL;
 END_VAR",
-        &[("E084", 4), ("E084", 6), ("E084", 10), ("E084", 17), ("E084", 21)],
+        &[
+            ("E084", 4),
+            ("E084", 6),
+            ("E084", 10),
+            ("E084", 17),
+            ("E084", 21),
+        ],
     );
     let m = messages("PROGRAM P\nVAR b AT %IX0.2 : INT; END_VAR\nEND_PROGRAM");
     assert_eq!(
@@ -241,5 +247,95 @@ VAR_INPUT
 END_VAR
 END_FUNCTION_BLOCK",
         &[("E030", 4)],
+    );
+}
+
+/// The folded value of each global constant of a snippet, by name.
+fn folded(src: &str) -> Vec<(String, Option<automat_sema::value::Value>)> {
+    let (_, interner, a) = common::analyze(src);
+    assert!(
+        a.diagnostics.iter().all(|d| !d.is_error()),
+        "{:?}",
+        a.diagnostics
+    );
+    a.model
+        .globals
+        .vars
+        .iter()
+        .map(|v| {
+            let value = v.init.as_ref().and_then(|i| i.as_value()).cloned();
+            (interner.name(v.name).to_string(), value)
+        })
+        .collect()
+}
+
+#[test]
+fn folding_computes_exact_values() {
+    use automat_sema::value::Value::*;
+    let got = folded(
+        "TYPE E : (A := 10, B, C := A * 2); END_TYPE
+VAR_GLOBAL CONSTANT
+    i1 : INT := 7 / 2;
+    i2 : INT := -7 MOD 3;
+    i3 : DINT := 2 * (3 + 4) - 1;
+    r1 : REAL := 1.5 * 2;
+    r2 : LREAL := 1 / 4.0;
+    r3 : LREAL := 2 ** 10;
+    b1 : BOOL := 3 > 2 AND NOT FALSE;
+    w1 : WORD := 16#FF00 OR 16#00F0;
+    w2 : BYTE := NOT 16#0F;
+    t1 : TIME := T#1s + T#250ms * 2;
+    e1 : E := C;
+    s1 : STRING := 'abc';
+    x1 : DINT := i1 + i3;
+    u1 : UINT := 65535;
+    c1 : CHAR := 'z';
+END_VAR",
+    );
+    let want = [
+        ("i1", Some(Int(3))),
+        ("i2", Some(Int(-1))),
+        ("i3", Some(Int(13))),
+        ("r1", Some(Real(3.0))),
+        ("r2", Some(Real(0.25))),
+        ("r3", Some(Real(1024.0))),
+        ("b1", Some(Bool(true))),
+        ("w1", Some(Int(0xFFF0))),
+        ("w2", Some(Int(0xF0))),
+        ("t1", Some(Duration(1_500_000_000))),
+        ("e1", Some(Enum(20))),
+        ("s1", Some(Str("abc".into()))),
+        ("x1", Some(Int(16))),
+        ("u1", Some(Int(65535))),
+        ("c1", Some(Str("z".into()))),
+    ];
+    let want: Vec<(String, Option<automat_sema::value::Value>)> =
+        want.into_iter().map(|(n, v)| (n.to_string(), v)).collect();
+    assert_eq!(got, want);
+}
+
+#[test]
+fn folding_errors_in_bodies_and_declarations() {
+    check(
+        "VAR_GLOBAL CONSTANT
+    S : SINT := 100;
+    T : SINT := S * 2;
+    Z : INT := 0;
+    Q : INT := 1 / Z;
+END_VAR
+PROGRAM P
+VAR i : INT; small : SINT; END_VAR
+    i := 10 / 0;
+    i := i / 0;
+    small := S + S;
+    CASE i OF 1 / 0: ; END_CASE;
+END_PROGRAM",
+        &[
+            ("E073", 3),
+            ("E071", 5),
+            ("E071", 9),
+            ("E073", 11),
+            ("E071", 12),
+        ],
     );
 }

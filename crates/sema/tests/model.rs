@@ -75,7 +75,12 @@ fn variables_are_ordered_with_folded_initial_values() {
     let m = &a.model;
     let sym = |s: &str| interner.lookup(s).unwrap();
     let (_, main) = m.pou_named(sym("Main")).unwrap();
-    let names: Vec<&str> = main.vars.vars.iter().map(|v| interner.name(v.name)).collect();
+    let names: Vec<&str> = main
+        .vars
+        .vars
+        .iter()
+        .map(|v| interner.name(v.name))
+        .collect();
     assert_eq!(names, ["b", "m", "p", "k", "s", "arr", "t", "counter"]);
     let var = |n: &str| main.vars.get(sym(n)).unwrap();
     assert_eq!(var("m").init, Some(Init::Value(Value::Enum(5))));
@@ -99,7 +104,13 @@ fn variables_are_ordered_with_folded_initial_values() {
     let ton = m.pou_named(sym("TON")).unwrap().1;
     assert!(ton.builtin);
     assert_eq!(ton.ast.unit, UnitRef::Std);
-    assert_eq!(m.types.get(var("t").ty), &TypeKind::Fb { pou: m.pou_names[&sym("TON")], name: sym("TON") });
+    assert_eq!(
+        m.types.get(var("t").ty),
+        &TypeKind::Fb {
+            pou: m.pou_names[&sym("TON")],
+            name: sym("TON")
+        }
+    );
     let (_, twice) = m.pou_named(sym("Twice")).unwrap();
     assert_eq!(twice.vars.vars[0].section, Section::Return);
     assert_eq!(twice.vars.vars[0].ty, TypeId::elem(Elem::Dint));
@@ -129,21 +140,62 @@ fn standard_function_blocks_have_the_standard_interfaces() {
     };
     let s = |n: &str, sec: Section, t: &str| (n.to_string(), sec, t.to_string());
     use Section::{Input as I, Output as O};
-    assert_eq!(iface("SR"), [s("S1", I, "BOOL"), s("R", I, "BOOL"), s("Q1", O, "BOOL")]);
-    assert_eq!(iface("RS"), [s("S", I, "BOOL"), s("R1", I, "BOOL"), s("Q1", O, "BOOL")]);
+    assert_eq!(
+        iface("SR"),
+        [s("S1", I, "BOOL"), s("R", I, "BOOL"), s("Q1", O, "BOOL")]
+    );
+    assert_eq!(
+        iface("RS"),
+        [s("S", I, "BOOL"), s("R1", I, "BOOL"), s("Q1", O, "BOOL")]
+    );
     assert_eq!(iface("R_TRIG"), [s("CLK", I, "BOOL"), s("Q", O, "BOOL")]);
     assert_eq!(iface("F_TRIG"), [s("CLK", I, "BOOL"), s("Q", O, "BOOL")]);
-    for (n, t) in [("TON", "TIME"), ("TOF", "TIME"), ("TP", "TIME"), ("LTON", "LTIME"), ("LTOF", "LTIME"), ("LTP", "LTIME")] {
-        assert_eq!(iface(n), [s("IN", I, "BOOL"), s("PT", I, t), s("Q", O, "BOOL"), s("ET", O, t)], "{n}");
+    for (n, t) in [
+        ("TON", "TIME"),
+        ("TOF", "TIME"),
+        ("TP", "TIME"),
+        ("LTON", "LTIME"),
+        ("LTOF", "LTIME"),
+        ("LTP", "LTIME"),
+    ] {
+        assert_eq!(
+            iface(n),
+            [
+                s("IN", I, "BOOL"),
+                s("PT", I, t),
+                s("Q", O, "BOOL"),
+                s("ET", O, t)
+            ],
+            "{n}"
+        );
     }
-    for (suffix, t) in [("", "INT"), ("_INT", "INT"), ("_DINT", "DINT"), ("_LINT", "LINT"), ("_UDINT", "UDINT"), ("_ULINT", "ULINT")] {
+    for (suffix, t) in [
+        ("", "INT"),
+        ("_INT", "INT"),
+        ("_DINT", "DINT"),
+        ("_LINT", "LINT"),
+        ("_UDINT", "UDINT"),
+        ("_ULINT", "ULINT"),
+    ] {
         assert_eq!(
             iface(&format!("CTU{suffix}")),
-            [s("CU", I, "BOOL"), s("R", I, "BOOL"), s("PV", I, t), s("Q", O, "BOOL"), s("CV", O, t)]
+            [
+                s("CU", I, "BOOL"),
+                s("R", I, "BOOL"),
+                s("PV", I, t),
+                s("Q", O, "BOOL"),
+                s("CV", O, t)
+            ]
         );
         assert_eq!(
             iface(&format!("CTD{suffix}")),
-            [s("CD", I, "BOOL"), s("LD", I, "BOOL"), s("PV", I, t), s("Q", O, "BOOL"), s("CV", O, t)]
+            [
+                s("CD", I, "BOOL"),
+                s("LD", I, "BOOL"),
+                s("PV", I, t),
+                s("Q", O, "BOOL"),
+                s("CV", O, t)
+            ]
         );
         assert_eq!(
             iface(&format!("CTUD{suffix}")),
@@ -164,7 +216,11 @@ fn standard_function_blocks_have_the_standard_interfaces() {
 #[test]
 fn standard_library_source_checks_clean() {
     let (_, mut interner, _) = analyze("");
-    let unit = automat_syntax::parse(automat_base::FileId(0), automat_sema::stdlib::FB_SOURCE, &mut interner);
+    let unit = automat_syntax::parse(
+        automat_base::FileId(0),
+        automat_sema::stdlib::FB_SOURCE,
+        &mut interner,
+    );
     assert!(unit.diagnostics.is_empty(), "{:?}", unit.diagnostics);
     let a = automat_sema::check(&[unit.unit], &mut interner);
     assert!(a.diagnostics.is_empty(), "{:?}", a.diagnostics);
@@ -193,6 +249,73 @@ fn expression_types_on_demand() {
     assert_eq!(t.ty, Ty::Of(TypeId::elem(Elem::Real)));
     let v = automat_sema::type_of(&a.model, &interner, main, value);
     assert_eq!(v.ty, Ty::Of(TypeId::elem(Elem::Real)));
-    assert_eq!(a.model.pou_ast(&units, main).map(|p| p.name.sym), Some(pou.name.sym));
+    assert_eq!(
+        a.model.pou_ast(&units, main).map(|p| p.name.sym),
+        Some(pou.name.sym)
+    );
     assert!(a.model.pou(PouId(u32::MAX)).is_none());
+}
+
+#[test]
+fn names_and_callees_resolve_for_lowering() {
+    use automat_sema::{resolve_callee, resolve_name, CallTarget, NameRef};
+    let src = "VAR_GLOBAL CONSTANT K : INT := 3; END_VAR
+VAR_GLOBAL g : INT; END_VAR
+TYPE Color : (Red, Green); END_TYPE
+FUNCTION F : INT
+VAR_INPUT x : INT; END_VAR
+    F := x;
+END_FUNCTION
+PROGRAM Main
+VAR_EXTERNAL g : INT; END_VAR
+VAR t : TON; c : Color; END_VAR
+    t(IN := TRUE);
+    g := F(K) + LIMIT(0, g, 9);
+    c := Green;
+END_PROGRAM";
+    let mut map = automat_base::SourceMap::new();
+    map.add("t.st", src);
+    let mut interner = automat_base::Interner::new();
+    let (_, a) = automat_sema::check_sources(&map, &mut interner);
+    assert!(a.diagnostics.is_empty(), "{:?}", a.diagnostics);
+    let m = &a.model;
+    let sym = |s: &str| interner.lookup(s).unwrap();
+    let main = m.pou_names[&sym("Main")];
+    assert_eq!(
+        resolve_name(m, &interner, main, sym("g"), None),
+        Some(NameRef::Local(0))
+    );
+    assert_eq!(
+        resolve_name(m, &interner, main, sym("t"), None),
+        Some(NameRef::Local(1))
+    );
+    assert_eq!(
+        resolve_name(m, &interner, main, sym("K"), None),
+        Some(NameRef::Global(0))
+    );
+    let color = m.type_names[&sym("Color")];
+    assert_eq!(
+        resolve_name(m, &interner, main, sym("Green"), None),
+        Some(NameRef::Enum(color, 1))
+    );
+    let name = |s: &str| automat_syntax::ast::Expr {
+        kind: automat_syntax::ast::ExprKind::Name(automat_syntax::ast::Ident {
+            sym: sym(s),
+            span: automat_base::Span::default(),
+        }),
+        span: automat_base::Span::default(),
+    };
+    assert_eq!(
+        resolve_callee(m, &interner, main, &name("F")),
+        Some(CallTarget::Function(m.pou_names[&sym("F")]))
+    );
+    assert_eq!(
+        resolve_callee(m, &interner, main, &name("t")),
+        Some(CallTarget::Instance(m.pou_names[&sym("TON")]))
+    );
+    match resolve_callee(m, &interner, main, &name("LIMIT")) {
+        Some(CallTarget::Std(sig)) => assert_eq!(sig.op, automat_sema::stdlib::StdOp::Limit),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(resolve_callee(m, &interner, main, &name("c")), None);
 }

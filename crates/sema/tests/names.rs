@@ -32,7 +32,13 @@ END_VAR
     a := a + nowhere * 2;
     a := first + second;
 END_PROGRAM",
-        &[("E020", 5), ("E020", 6), ("E020", 7), ("E020", 8), ("E020", 8)],
+        &[
+            ("E020", 5),
+            ("E020", 6),
+            ("E020", 7),
+            ("E020", 8),
+            ("E020", 8),
+        ],
     );
     let m = messages("PROGRAM MainProg\nVAR a : INT; END_VAR\n a := xyz;\nEND_PROGRAM");
     assert_eq!(m, ["unknown variable `xyz` in `MainProg`"]);
@@ -193,7 +199,13 @@ END_VAR
     i := INT;
     i := LIMIT;
 END_PROGRAM",
-        &[("E026", 9), ("E026", 10), ("E026", 11), ("E026", 12), ("E026", 13)],
+        &[
+            ("E026", 9),
+            ("E026", 10),
+            ("E026", 11),
+            ("E026", 12),
+            ("E026", 13),
+        ],
     );
 }
 
@@ -247,7 +259,10 @@ fn duplicates_across_files() {
     let got = codes_of(&map, &a);
     assert_eq!(got, [("E023".to_string(), 2)]);
     assert_eq!(a.diagnostics[0].labels.len(), 1);
-    assert_eq!(a.diagnostics[0].labels[0].span.file, automat_base::FileId(0));
+    assert_eq!(
+        a.diagnostics[0].labels[0].span.file,
+        automat_base::FileId(0)
+    );
 }
 
 #[test]
@@ -287,6 +302,22 @@ VAR t : TON; b : BOOL; i : INT; END_VAR
     t(go := TRUE);
     b := t.done;
     i := LIMIT(5);
+END_PROGRAM",
+    );
+}
+
+#[test]
+fn program_globals_serve_external_declarations() {
+    clean(
+        "FUNCTION_BLOCK Counter
+VAR_EXTERNAL total : DINT; END_VAR
+    total := total + 1;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR_GLOBAL total : DINT; END_VAR
+VAR c : Counter; END_VAR
+    c();
+    total := 0;
 END_PROGRAM",
     );
 }

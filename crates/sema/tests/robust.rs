@@ -196,7 +196,10 @@ struct Lcg(u64);
 
 impl Lcg {
     fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         self.0 >> 33
     }
 
@@ -206,11 +209,64 @@ impl Lcg {
 }
 
 const SNIPPETS: &[&str] = &[
-    " ", ";", ":=", "(", ")", "[", "]", ".", ",", "..", "#", "%IX0.1", "%I*", "'x'", "1", "-1", "300",
-    "1.5", "T#1s", "TRUE", "END_IF", "END_VAR", "VAR", "IF", "THEN", "ARRAY[1..2] OF", "STRUCT",
-    "END_STRUCT", "REF_TO", "^", "=>", "TON", "x", "INT", "AND", "**", "CASE", "OF", "FOR", "TO",
-    "EXIT", "(*", "*)", "FUNCTION_BLOCK", "END_FUNCTION_BLOCK", "PROGRAM", "CONFIGURATION", "TASK",
-    "RESOURCE", "AT", "CONSTANT", "NOT", "MOD", "16#FF", "STRING[5]", "Color#Red", "LIMIT(", "w.3",
+    " ",
+    ";",
+    ":=",
+    "(",
+    ")",
+    "[",
+    "]",
+    ".",
+    ",",
+    "..",
+    "#",
+    "%IX0.1",
+    "%I*",
+    "'x'",
+    "1",
+    "-1",
+    "300",
+    "1.5",
+    "T#1s",
+    "TRUE",
+    "END_IF",
+    "END_VAR",
+    "VAR",
+    "IF",
+    "THEN",
+    "ARRAY[1..2] OF",
+    "STRUCT",
+    "END_STRUCT",
+    "REF_TO",
+    "^",
+    "=>",
+    "TON",
+    "x",
+    "INT",
+    "AND",
+    "**",
+    "CASE",
+    "OF",
+    "FOR",
+    "TO",
+    "EXIT",
+    "(*",
+    "*)",
+    "FUNCTION_BLOCK",
+    "END_FUNCTION_BLOCK",
+    "PROGRAM",
+    "CONFIGURATION",
+    "TASK",
+    "RESOURCE",
+    "AT",
+    "CONSTANT",
+    "NOT",
+    "MOD",
+    "16#FF",
+    "STRING[5]",
+    "Color#Red",
+    "LIMIT(",
+    "w.3",
 ];
 
 fn mutate(text: &str, rng: &mut Lcg) -> String {
@@ -259,7 +315,10 @@ fn corpus_files() -> Vec<String> {
         }
     }
     let mut out = Vec::new();
-    walk(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/corpus"), &mut out);
+    walk(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/corpus"),
+        &mut out,
+    );
     out.push(automat_sema::stdlib::FB_SOURCE.to_string());
     out
 }
@@ -267,8 +326,11 @@ fn corpus_files() -> Vec<String> {
 #[test]
 fn mutated_sources_never_panic() {
     let files = corpus_files();
-    let mut rng = Lcg(0x5eed);
-    let rounds = if cfg!(debug_assertions) { 600 } else { 5000 };
+    // FUZZ_SEED / FUZZ_ROUNDS run other or longer campaigns by hand.
+    let env = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<u64>().ok());
+    let mut rng = Lcg(env("FUZZ_SEED").unwrap_or(0x5eed));
+    let default_rounds = if cfg!(debug_assertions) { 600 } else { 5000 };
+    let rounds = env("FUZZ_ROUNDS").unwrap_or(default_rounds);
     for _ in 0..rounds {
         let mut map = SourceMap::new();
         for _ in 0..1 + rng.below(3) {

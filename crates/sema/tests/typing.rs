@@ -309,7 +309,13 @@ VAR i : INT; END_VAR
     i;
     F();
 END_PROGRAM",
-        &[("E042", 7), ("E042", 8), ("E042", 9), ("E063", 10), ("E063", 11)],
+        &[
+            ("E042", 7),
+            ("E042", 8),
+            ("E042", 9),
+            ("E063", 10),
+            ("E063", 11),
+        ],
     );
 }
 
@@ -328,7 +334,13 @@ VAR w : WORD; d : DINT; b : BOOL; r : REAL; bt : BYTE; x : BOOL; END_VAR
     w.3 := TRUE;
     d := d.%W1;
 END_PROGRAM",
-        &[("E037", 4), ("E037", 6), ("E037", 7), ("E037", 9), ("E030", 11)],
+        &[
+            ("E037", 4),
+            ("E037", 6),
+            ("E037", 7),
+            ("E037", 9),
+            ("E030", 11),
+        ],
     );
 }
 
@@ -470,5 +482,24 @@ VAR b : BOOL; w : WORD; i : INT; END_VAR
     b := %I*;
 END_PROGRAM",
         &[("E030", 6), ("E084", 7)],
+    );
+}
+
+#[test]
+fn unreachable_statements_are_warned_once_per_block() {
+    check(
+        "FUNCTION F : INT
+VAR_INPUT x : INT; END_VAR
+    F := 0;
+    WHILE x > 0 DO
+        EXIT;
+        F := 1;
+        F := 2;
+    END_WHILE;
+    IF x > 1 THEN RETURN; ; END_IF;
+    RETURN;
+    F := 3;
+END_FUNCTION",
+        &[("W002", 6), ("W002", 11)],
     );
 }

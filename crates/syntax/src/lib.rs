@@ -4,8 +4,25 @@
 //! diagnostics; later stages work on whatever parsed. This crate knows nothing
 //! of types or of the stages above it.
 //!
-//! Layout: [`lexer`] turns bytes into tokens (decoding literals through
-//! `literal`), `parser` turns tokens into the [`ast`].
+//! Layout: [`lexer`] turns bytes into tokens, decoding every literal into its
+//! value on the way (`literal`: numbers, durations, dates, strings); `parser`
+//! turns tokens into the [`ast`] by recursive descent, one module per area
+//! (expressions, statements, declarations, types, initial values, POUs,
+//! configurations).
+//!
+//! What the parser guarantees:
+//! - No panic, no hang, no stack overflow on any input: every loop consumes
+//!   a token, and nesting (and chains such as `a + b + ...`) is limited to
+//!   [`MAX_DEPTH`] levels, which also bounds the depth of every returned tree.
+//! - Diagnostics E001–E007 only, each at the offending token with a message
+//!   naming what was expected and what was found, sorted by position. One
+//!   mistake gives one error: see `parser` for the recovery rules.
+//! - Literals are checked here: malformed ones (E004), integers beyond 64 bits
+//!   and typed literals outside their elementary type (`SINT#300`,
+//!   `USINT#-1`, `BOOL#2`, `REAL#1E39`) are E006. A malformed literal becomes
+//!   an [`ast::ExprKind::Error`].
+//! - A typed literal keeps what was written: `REAL#1` is `LitKind::Int(1)`
+//!   with `ty` REAL; giving it its type is the checker's job.
 
 pub mod ast;
 pub mod lexer;

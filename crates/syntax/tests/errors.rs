@@ -2,6 +2,7 @@
 //! error, at the offending token, and parsing goes on.
 
 mod common;
+use automat_syntax::MAX_DEPTH;
 use common::{errors, messages, parse};
 
 #[test]
@@ -202,6 +203,7 @@ fn deep_nesting_is_an_error_not_a_crash() {
     );
     let msgs = messages(&deep);
     assert_eq!(msgs, vec!["nesting too deep: more than 256 levels"]);
+    assert_eq!(MAX_DEPTH, 256);
 
     let ifs = format!(
         "PROGRAM p\n{}x := 1;\n{}y := 2;\nEND_PROGRAM",
@@ -296,4 +298,36 @@ fn nesting_just_under_the_limit_fits_the_stack() {
         // One more level of the same: an error, never a crash.
         assert!(out.unit.items.len() == 1, "case {i}");
     }
+}
+
+/// Left-associative chains build trees as deep as they are long, so each
+/// link counts as a level: every tree the parser returns has a bounded
+/// depth, and dropping or walking it cannot overflow the stack.
+#[test]
+fn long_chains_are_bounded_too() {
+    let n = 100_000;
+    let chains = [
+        format!("x := a{};", " + a".repeat(n)),
+        format!("x := a{};", " ** a".repeat(n)),
+        format!("x := s{};", ".m".repeat(n)),
+        format!("x := p{};", "^".repeat(n)),
+        format!("x := f{};", "()".repeat(n)),
+        format!("x := a{};", "[1]".repeat(n)),
+        format!("x := w{};", ".%X1".repeat(n)),
+    ];
+    for c in &chains {
+        let out = parse(&format!("PROGRAM p\n{c}\ny := 1;\nEND_PROGRAM"));
+        assert_eq!(out.diags.len(), 1, "{}", &c[..20]);
+        // `a[1][1]...` may hit the limit inside an index: either message.
+        let m = &out.diags[0].message;
+        assert!(
+            m.starts_with("expression too long") || m.starts_with("nesting too deep"),
+            "{m}"
+        );
+        // The statement after the long one is intact.
+        assert_eq!(out.stmts(&out.body(0)[1..]), "[y := 1]");
+    }
+    // Long but within the limit: fine.
+    let ok = format!("PROGRAM p\nx := a{};\nEND_PROGRAM", " + a".repeat(200));
+    assert!(parse(&ok).diags.is_empty());
 }

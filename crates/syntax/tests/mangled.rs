@@ -353,6 +353,9 @@ const NESTS: &[(&str, &str)] = &[
     ("(a := ", ")"),
     ("(*", ""),
     ("{", ""),
+    ("a + ", ""),
+    ("a ** ", ""),
+    ("s.", ""),
 ];
 
 /// One kind of deep nesting (far past the parser's limit) inserted at a

@@ -36,7 +36,9 @@ impl<'m> Checker<'m> {
         as_stmt: bool,
     ) -> Typed {
         if let ExprKind::Name(id) = &callee.kind {
-            if self.var(id.sym).is_none() {
+            // Inside a function its name is also its return value; a call is the function.
+            let var = self.var(id.sym);
+            if var.is_none_or(|(v, _)| v.section == crate::model::Section::Return) {
                 return self.call_by_name(e, id.sym, id.span, args, expect, as_stmt);
             }
         }
@@ -260,7 +262,7 @@ impl<'m> Checker<'m> {
                 }
                 continue;
             };
-            self.bind(pou, param, a);
+            self.bind(pou, param, a, false);
         }
         for v in pou.vars.vars.iter().filter(|v| v.section == Section::InOut) {
             let bound = seen.iter().any(|(s, _)| *s == v.name);
@@ -306,15 +308,9 @@ impl<'m> Checker<'m> {
         }
         for (i, a) in args.iter().enumerate() {
             match order.get(i) {
-                Some(p) if p.section == Section::Output => {
-                    // A positional output is bound like `name => var`.
-                    let as_out = Arg {
-                        dir: ArgDir::Out,
-                        ..a.clone()
-                    };
-                    self.bind(pou, p, &as_out)
-                }
-                Some(p) => self.bind(pou, p, a),
+                // A positional output is bound like `name => var`.
+                Some(p) if p.section == Section::Output => self.bind(pou, p, a, true),
+                Some(p) => self.bind(pou, p, a, false),
                 None => {
                     if let Some(v) = &a.value {
                         self.expr(v, None);
@@ -349,9 +345,10 @@ impl<'m> Checker<'m> {
         }
     }
 
-    /// One argument bound to a parameter.
-    fn bind(&mut self, pou: &'m Pou, param: &'m Var, a: &Arg) {
-        let out = matches!(a.dir, ArgDir::Out | ArgDir::OutNot);
+    /// One argument bound to a parameter (`positional_out`: a positional
+    /// argument in an output's position, bound like `=>`).
+    fn bind(&mut self, pou: &'m Pou, param: &'m Var, a: &Arg, positional_out: bool) {
+        let out = positional_out || matches!(a.dir, ArgDir::Out | ArgDir::OutNot);
         match (param.section, out) {
             (Section::Output, true) => {
                 let Some(v) = &a.value else { return };

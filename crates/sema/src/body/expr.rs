@@ -127,8 +127,9 @@ impl<'m> Checker<'m> {
                     });
                     return Typed::ERROR;
                 };
-                let elem = match ty {
-                    Ty::Of(t) => self.model.types.elem(t),
+                let elem = match (ty, expect) {
+                    (Ty::Of(t), _) => self.model.types.elem(t),
+                    (Ty::AnyInt, Some(x)) => self.model.types.elem(x),
                     _ => None,
                 };
                 let folded = v.value.as_ref().map(|x| value::unary(*op, x, elem));
@@ -355,7 +356,13 @@ impl<'m> Checker<'m> {
     }
 
     /// `base.member` once `base` is typed.
-    pub(crate) fn member_of(&mut self, b: &Typed, base: &Expr, member: Ident, access: Access) -> Typed {
+    pub(crate) fn member_of(
+        &mut self,
+        b: &Typed,
+        base: &Expr,
+        member: Ident,
+        access: Access,
+    ) -> Typed {
         let id = match b.ty {
             Ty::Error => return Typed::ERROR,
             Ty::Of(id) => id,

@@ -12,8 +12,22 @@ use automat_syntax::ast::{CaseArm, CaseLabel, Expr, ExprKind, Ident, Stmt, StmtK
 
 impl<'m> Checker<'m> {
     pub(crate) fn stmts(&mut self, body: &[Stmt]) {
+        let mut after_jump = false;
         for s in body {
+            if after_jump && !matches!(s.kind, StmtKind::Empty) {
+                self.warn(Code::W002, s.span, |_| {
+                    "unreachable statement: it follows RETURN, EXIT or CONTINUE".into()
+                });
+                after_jump = false;
+            }
             self.stmt(s);
+            // (EXIT and CONTINUE outside a loop are errors, not jumps.)
+            let jumps = match s.kind {
+                StmtKind::Return => true,
+                StmtKind::Exit | StmtKind::Continue => self.loop_depth > 0,
+                _ => false,
+            };
+            after_jump |= jumps;
         }
     }
 
@@ -147,13 +161,8 @@ impl<'m> Checker<'m> {
                 });
             }
             Fit::Mismatch => {
-                let val = shown();
                 self.err(Code::E030, span, |c| {
-                    let from = match v.ty {
-                        Ty::AnyInt | Ty::AnyReal => format!("the value {val}"),
-                        Ty::AnyStr { .. } => format!("the string {val}"),
-                        t => format!("a value of type {}", c.tyname(t)),
-                    };
+                    let from = crate::names::value_desc(&c.model.types, c.interner, v);
                     format!(
                         "cannot assign {from} to `{}` of type {}",
                         expr_text(c.interner, target),
@@ -259,10 +268,14 @@ impl<'m> Checker<'m> {
                 None
             }
             Fit::Mismatch => {
+                let shown = v.show();
                 self.err(Code::E033, e.span, |c| {
+                    let label = match t.ty {
+                        Ty::Of(lt) => format!("a CASE label of type {}", c.type_name(lt)),
+                        _ => format!("the CASE label {shown}"),
+                    };
                     format!(
-                        "a CASE label of type {} does not match the selector of type {}",
-                        c.tyname(t.ty),
+                        "{label} does not match the selector of type {}",
                         c.type_name(sel)
                     )
                 });

@@ -7,7 +7,7 @@
 //! [`Typed::ERROR`] after reporting why (E070 not constant, E071 division
 //! by zero, E073 overflow, ...).
 
-use super::{Builder, Owner, MAX_DEPTH};
+use super::{Builder, MAX_DEPTH};
 use crate::lattice::int_fits;
 use crate::model::Section;
 use crate::ops::{self, Ty, Typed};
@@ -83,8 +83,9 @@ impl<'a> Builder<'a> {
                     ));
                     return Typed::ERROR;
                 };
-                let elem = match ty {
-                    Ty::Of(t) => self.types.elem(t),
+                let elem = match (ty, expect) {
+                    (Ty::Of(t), _) => self.types.elem(t),
+                    (Ty::AnyInt, Some(x)) => self.types.elem(x),
                     _ => None,
                 };
                 let folded = v.value.as_ref().map(|x| value::unary(*op, x, elem));
@@ -291,13 +292,10 @@ impl<'a> Builder<'a> {
         }
     }
 
-    /// A global variable of the name: project list first, then configurations and resources.
+    /// A global variable of the name: project list first, then configurations,
+    /// resources and programs, in declaration order.
     pub(super) fn find_global(&self, name: Symbol) -> Option<(usize, u32)> {
-        self.scopes
-            .iter()
-            .enumerate()
-            .filter(|(_, sc)| !matches!(sc.owner, Owner::Pou(_)))
-            .find_map(|(s, sc)| sc.by_name.get(&name).map(|&i| (s, i)))
+        self.globals_by_name.get(&name)?.first().copied()
     }
 
     /// An enumeration value by its bare name; the expected type wins when

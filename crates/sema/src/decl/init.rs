@@ -62,14 +62,12 @@ impl<'a> Builder<'a> {
                         return None;
                     }
                     Fit::Mismatch => {
-                        let from = crate::names::ty_name(&self.types, self.interner, t.ty);
+                        let from = crate::names::value_desc(&self.types, self.interner, &t);
                         let tn = self.type_name(ty);
                         self.emit(Diagnostic::error(
                             Code::E039,
                             e.span,
-                            format!(
-                                "an initial value of type {from} does not fit `{n}` of type {tn}"
-                            ),
+                            format!("{from} cannot initialise `{n}` of type {tn}"),
                         ));
                         return None;
                     }

@@ -92,7 +92,9 @@ enum SlotState {
     InProgress,
     /// Resolved (the variable is in [`Scope::vars`]); `poisoned` when its
     /// initial value was in error.
-    Done { poisoned: bool },
+    Done {
+        poisoned: bool,
+    },
 }
 
 pub(crate) struct PouEntry<'a> {
@@ -137,6 +139,9 @@ pub(crate) struct Builder<'a> {
     pous: Vec<PouEntry<'a>>,
     pou_names: FxHashMap<Symbol, PouId>,
     scopes: Vec<Scope<'a>>,
+    /// Every global variable by name: project, configuration and resource
+    /// globals, and the VAR_GLOBAL of programs (built after collection).
+    globals_by_name: FxHashMap<Symbol, Vec<(usize, u32)>>,
     configs: Vec<ConfigEntry<'a>>,
     depth: u32,
 }
@@ -175,10 +180,12 @@ pub(crate) fn declare<'a>(
             vars: Vec::new(),
             by_name: FxHashMap::default(),
         }],
+        globals_by_name: FxHashMap::default(),
         configs: Vec::new(),
         depth: 0,
     };
     b.collect(units, stdlib);
+    b.index_globals();
     for i in 0..b.type_order.len() {
         if let Some(&name) = b.type_order.get(i) {
             b.resolve_named(name, None, false);
@@ -199,6 +206,20 @@ pub(crate) fn declare<'a>(
 }
 
 impl<'a> Builder<'a> {
+    fn index_globals(&mut self) {
+        for (s, sc) in self.scopes.iter().enumerate() {
+            let in_pou = matches!(sc.owner, Owner::Pou(_));
+            for (i, slot) in sc.slots.iter().enumerate() {
+                if !in_pou || slot.block.kind == ast::VarKind::Global {
+                    self.globals_by_name
+                        .entry(slot.name.sym)
+                        .or_default()
+                        .push((s, i as u32));
+                }
+            }
+        }
+    }
+
     /// Types of VAR_ACCESS and VAR_CONFIG entries (their paths are checked in phase 3).
     fn resolve_config_decls(&mut self) {
         for c in 0..self.configs.len() {

@@ -99,7 +99,11 @@ impl<'a> Builder<'a> {
         };
         let out = info(&var, poisoned);
         self.set_slot(s, i, SlotState::Done { poisoned });
-        if let Some(v) = self.scopes.get_mut(s).and_then(|sc| sc.vars.get_mut(i as usize)) {
+        if let Some(v) = self
+            .scopes
+            .get_mut(s)
+            .and_then(|sc| sc.vars.get_mut(i as usize))
+        {
             *v = Some(var);
         }
         out
@@ -141,13 +145,7 @@ impl<'a> Builder<'a> {
                     continue;
                 }
                 let (name, ty, span) = (ext.name, ext.ty, ext.span);
-                let globals: Vec<(usize, u32)> = self
-                    .scopes
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, sc)| !matches!(sc.owner, Owner::Pou(_)))
-                    .filter_map(|(gs, sc)| sc.by_name.get(&name).map(|&gi| (gs, gi)))
-                    .collect();
+                let globals = self.globals_by_name.get(&name).cloned().unwrap_or_default();
                 let mut matched: Option<(bool, Option<Init>)> = None;
                 let mut other: Option<(TypeId, automat_base::Span)> = None;
                 for (gs, gi) in globals {

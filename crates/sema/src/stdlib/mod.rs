@@ -223,6 +223,9 @@ pub enum StdOp {
     Adr,
     /// `SIZEOF(x)`: the storage size in bytes (UDINT).
     Sizeof,
+    /// `__SCAN_TIME()`: the PLC time of the current scan (TIME, ns since
+    /// start), for the timer blocks of the standard library.
+    ScanTime,
 }
 
 /// The signature of one standard function.
@@ -256,7 +259,6 @@ impl Sig {
             return Some(*p);
         }
         let ext = self.ext?;
-        let _ = u32::try_from(pos - self.params.len()).ok()?;
         Some(Param {
             name: ext.prefix,
             ty: ext.ty,

@@ -243,6 +243,7 @@ pub(super) fn fixed(n: &str) -> Option<Sig> {
         "REF" => sig(n, O::Ref, &[p("IN", F_ANY)], RTy::RefToArg),
         "ADR" => sig(n, O::Adr, &[p("IN", F_ANY)], RTy::RefToArg),
         "SIZEOF" => sig(n, O::Sizeof, &[p("IN", F_ANY)], RTy::Elem(Udint)),
+        "__SCAN_TIME" => sig(n, O::ScanTime, &[], RTy::Elem(Time)),
         _ => return None,
     })
 }

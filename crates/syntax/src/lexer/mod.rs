@@ -13,7 +13,7 @@ mod trivia;
 pub use token::{Kw, Tok, Token};
 
 use crate::ast::Literal;
-use automat_base::{Code, Diagnostic, FileId, Interner, Span};
+use automat_base::{Code, Diagnostic, FileId, Interner, Span, Symbol};
 
 /// What the lexer produced for one file.
 pub struct Lexed {
@@ -42,6 +42,7 @@ pub fn lex(
         diags,
         toks: Vec::with_capacity(text.len() / 4 + 16),
         lits: Vec::new(),
+        recent: [RecentIdent::EMPTY; RECENT_SLOTS],
     };
     // A UTF-8 byte order mark is not part of the program.
     if lx.b.starts_with(&[0xEF, 0xBB, 0xBF]) {
@@ -63,6 +64,27 @@ pub(crate) struct Lexer<'a> {
     diags: &'a mut Vec<Diagnostic>,
     toks: Vec<Token>,
     lits: Vec<Literal>,
+    /// Identifiers seen recently, by hash: a hit skips the interner (which
+    /// copies and upper-cases the name before its own lookup).
+    recent: [RecentIdent; RECENT_SLOTS],
+}
+
+const RECENT_SLOTS: usize = 256;
+
+/// An identifier at `start..start + len` of this file and its symbol.
+#[derive(Clone, Copy)]
+struct RecentIdent {
+    start: u32,
+    len: u32,
+    sym: Symbol,
+}
+
+impl RecentIdent {
+    const EMPTY: RecentIdent = RecentIdent {
+        start: 0,
+        len: 0,
+        sym: Symbol(0),
+    };
 }
 
 const IDENT: u8 = 1;
@@ -236,8 +258,28 @@ impl Lexer<'_> {
         if let Some(kw) = Kw::lookup_hashed(&self.b[start..end], h) {
             return self.push(Tok::Kw(kw), start);
         }
-        let sym = self.interner.intern(&self.text[start..end]);
+        let sym = self.ident_symbol(start, end, h);
         self.push(Tok::Ident(sym), start);
+    }
+
+    /// The symbol of the identifier `start..end`, whose case-insensitive
+    /// hash is `h`. Names are case-insensitive, so any spelling that matches
+    /// a recent one has its symbol.
+    fn ident_symbol(&mut self, start: usize, end: usize, h: u32) -> Symbol {
+        let word = &self.b[start..end];
+        let slot = (h.wrapping_mul(0x9E37_79B9) >> 24) as usize % RECENT_SLOTS;
+        let r = self.recent[slot];
+        let seen = self.b.get(r.start as usize..(r.start + r.len) as usize);
+        if r.len != 0 && seen.is_some_and(|s| s.eq_ignore_ascii_case(word)) {
+            return r.sym;
+        }
+        let sym = self.interner.intern(&self.text[start..end]);
+        self.recent[slot] = RecentIdent {
+            start: start as u32,
+            len: (end - start) as u32,
+            sym,
+        };
+        sym
     }
 
     /// A run of characters that cannot start a token: one E001 for the run.

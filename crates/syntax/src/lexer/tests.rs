@@ -178,3 +178,23 @@ fn byte_order_mark_is_skipped() {
     assert_eq!(kinds("\u{feff}x"), kinds("x"));
     assert!(codes("\u{feff}x").is_empty());
 }
+
+#[test]
+fn many_identifiers_map_to_their_own_symbols() {
+    // More names than the lexer's cache of recent identifiers has slots,
+    // each twice in different case: every token must carry its own symbol.
+    let names: Vec<String> = (0..2000).map(|i| format!("name_{i}")).collect();
+    let src = names
+        .iter()
+        .map(|n| format!("{n} {}", n.to_uppercase()))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let (lexed, diags, interner) = lex_str(&src);
+    assert!(diags.is_empty());
+    for (i, n) in names.iter().enumerate() {
+        let want = interner.lookup(n).unwrap();
+        assert_eq!(lexed.toks[2 * i].tok, Tok::Ident(want), "{n}");
+        assert_eq!(lexed.toks[2 * i + 1].tok, Tok::Ident(want), "{n}");
+        assert_eq!(interner.name(want), n.as_str());
+    }
+}

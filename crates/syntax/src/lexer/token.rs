@@ -106,11 +106,12 @@ macro_rules! keywords {
 /// time). One hash over the word, one case-insensitive comparison.
 const KW_HASH_MUL: u32 = 1490;
 
-/// One step of the keyword hash (case-insensitive).
+/// One step of the keyword hash. Clearing bit 5 folds ASCII case (it also
+/// merges a few non-letters, which only costs a comparison, never a wrong
+/// answer: a lookup always compares the whole word).
 #[inline]
-pub const fn kw_hash_step(h: u32, c: u8) -> u32 {
-    h.wrapping_mul(KW_HASH_MUL)
-        .wrapping_add(c.to_ascii_uppercase() as u32)
+pub(crate) const fn kw_hash_step(h: u32, c: u8) -> u32 {
+    h.wrapping_mul(KW_HASH_MUL).wrapping_add((c & 0xDF) as u32)
 }
 
 const fn kw_slot(h: u32) -> usize {
@@ -148,9 +149,9 @@ impl Kw {
         Kw::lookup_hashed(word, h)
     }
 
-    /// As [`Kw::lookup`], with the hash already computed by [`kw_hash_step`].
+    /// As [`Kw::lookup`], with the hash already computed by `kw_hash_step`.
     #[inline]
-    pub fn lookup_hashed(word: &[u8], h: u32) -> Option<Kw> {
+    pub(crate) fn lookup_hashed(word: &[u8], h: u32) -> Option<Kw> {
         let i = usize::from(KW_TABLE[kw_slot(h)]).checked_sub(1)?;
         let text = Kw::TEXTS.get(i)?;
         if text.eq_ignore_ascii_case(word) {

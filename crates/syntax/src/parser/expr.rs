@@ -116,10 +116,18 @@ impl Parser<'_> {
 
     #[inline(never)]
     fn binary_tail(&mut self, mut lhs: Expr, min: u8) -> Expr {
+        let mut links: u32 = 0;
         while let Some((op, prec)) = binop(self.peek()) {
             if prec < min {
                 break;
             }
+            // The first link hangs off an operand whose own level was
+            // counted already; every further one deepens the tree.
+            if links > 0 && !self.enter_link() {
+                self.skip_too_deep();
+                break;
+            }
+            links += 1;
             self.bump();
             let rhs = self.binary(prec + 1);
             let span = lhs.span.to(rhs.span);
@@ -132,6 +140,7 @@ impl Parser<'_> {
                 span,
             );
         }
+        self.leave_links(links.saturating_sub(1));
         lhs
     }
 
@@ -171,7 +180,16 @@ impl Parser<'_> {
     /// `lhs ** rhs ** ...`; a right operand may carry a unary operator.
     #[inline(never)]
     fn power_tail(&mut self, mut lhs: Expr) -> Expr {
-        while self.eat(Tok::StarStar) {
+        let mut links: u32 = 0;
+        while self.at(Tok::StarStar) {
+            // The first link hangs off an operand whose own level was
+            // counted already; every further one deepens the tree.
+            if links > 0 && !self.enter_link() {
+                self.skip_too_deep();
+                break;
+            }
+            links += 1;
+            self.bump();
             let rhs = if unop(self.peek()).is_some() {
                 self.prefixed()
             } else {
@@ -187,6 +205,7 @@ impl Parser<'_> {
                 span,
             );
         }
+        self.leave_links(links.saturating_sub(1));
         lhs
     }
 
@@ -200,19 +219,34 @@ impl Parser<'_> {
 
     #[inline(never)]
     fn postfix_tail(&mut self, mut e: Expr) -> Expr {
+        let mut links: u32 = 0;
         loop {
+            if !matches!(
+                self.peek(),
+                Tok::Dot | Tok::LBracket | Tok::LParen | Tok::Caret
+            ) {
+                break;
+            }
+            // The first link hangs off an operand whose own level was
+            // counted already; every further one deepens the tree.
+            if links > 0 && !self.enter_link() {
+                self.skip_too_deep();
+                break;
+            }
+            links += 1;
             e = match self.peek() {
                 Tok::Dot => self.after_dot(e),
                 Tok::LBracket => self.index(e),
                 Tok::LParen => self.call(e),
-                Tok::Caret => {
+                _ => {
                     self.bump();
                     let span = self.span_from(e.span.start);
                     mk(ExprKind::Deref(Box::new(e)), span)
                 }
-                _ => return e,
             };
         }
+        self.leave_links(links.saturating_sub(1));
+        e
     }
 
     /// `base[i, j]`, at `[`.

@@ -7,7 +7,10 @@
 //!   about the same token are the same mistake seen from an outer rule.
 //! - Loops over lists guarantee progress: an iteration that consumed nothing
 //!   skips a token (after an error was reported).
-//! - Nesting is capped at [`MAX_DEPTH`] so no input can overflow the stack.
+//! - Nesting is capped at [`MAX_DEPTH`] so no input can overflow the stack;
+//!   each link of a left-associative chain (`a + b + c`, `a.b.c`) counts as
+//!   a level too, as it deepens the tree that later stages walk. Past the
+//!   limit: one error, and the rest of the statement is skipped.
 //! - `frames` holds the closing keywords of the statements and POUs being
 //!   parsed: a statement list stops at a closer that belongs to an enclosing
 //!   construct (that construct is then reported as unclosed), and skips a
@@ -27,7 +30,8 @@ use crate::ast::{Ident, Literal, SourceUnit};
 use crate::lexer::{Kw, Lexed, Tok, Token};
 use automat_base::{Code, Diagnostic, FileId, Interner, Span};
 
-/// How deeply expressions, statements, types and initialisers may nest.
+/// How deeply expressions, statements, types and initial values may nest
+/// (counting operator and access chains, see the module comment).
 pub const MAX_DEPTH: u32 = 256;
 
 pub struct Parser<'a> {
@@ -299,21 +303,28 @@ impl<'a> Parser<'a> {
 
     /// Enters one nesting level; false (after an error) when too deep.
     fn enter(&mut self) -> bool {
-        self.enter_or("nesting too deep")
+        self.enter_or(false)
     }
 
     /// Adds one link to a chain (`a + b + ...`, `a.b.c...`): each link is
     /// one more level of the tree, so it counts against the same limit,
-    /// which bounds the depth of every tree the parser returns.
+    /// which bounds the depth of every tree the parser returns (consumers
+    /// recurse over it, and dropping it recurses too).
     fn enter_link(&mut self) -> bool {
-        self.enter_or("expression too long: split it, as each operator or access in a row is one level of")
+        self.enter_or(true)
     }
 
-    fn enter_or(&mut self, what: &str) -> bool {
+    fn enter_or(&mut self, link: bool) -> bool {
         if self.depth >= MAX_DEPTH {
             if !self.deep_reported {
                 self.deep_reported = true;
-                let msg = format!("{what} nesting, and the limit is {MAX_DEPTH} levels");
+                let msg = if link {
+                    format!(
+                        "expression too long: more than {MAX_DEPTH} levels, counting each operator or access in a row as one; split it into several statements"
+                    )
+                } else {
+                    format!("nesting too deep: more than {MAX_DEPTH} levels")
+                };
                 self.error_here(msg);
             }
             return false;

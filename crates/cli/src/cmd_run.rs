@@ -1,0 +1,313 @@
+//! `automat run`: compile a project and run it on the scan-cycle runtime.
+//!
+//! Exit codes (a contract): 0 ok, 1 the program does not compile, 2 bad
+//! command line (unknown variable, bad duration, unreadable file, `--program`
+//! naming no PROGRAM), 3 runtime fault.
+
+use crate::{files, Outcome};
+use automat_base::{render, Code, Diagnostic, Interner, SourceMap};
+use automat_engine::Engine;
+use automat_ir::Program;
+use automat_lower::{lower, LowerOptions};
+use automat_runtime::io::NoIo;
+use automat_runtime::retain::{self, Loaded};
+use automat_runtime::scan::Env;
+use automat_runtime::trace::Trace;
+use automat_runtime::{
+    resolve, run, timearg, value, ClockMode, Limit, Place, RunConfig, RunEnd, RunReport,
+    ScanObserver, SystemClock,
+};
+use clap::Args;
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+/// Compile Structured Text sources and run them as a PLC.
+///
+/// Without a CONFIGURATION the PROGRAM runs as a cyclic task every
+/// --cycle-time; with one, every TASK runs at its INTERVAL (higher priority
+/// first) or on the rising edge of its SINGLE variable.
+///
+/// With --cycles or --duration the run uses the virtual clock (scans back to
+/// back, PLC time of scan k exactly (k-1) x period) and stops by itself;
+/// otherwise it runs in real time until Ctrl-C, which stops at the end of
+/// the scan (RETAIN variables are saved).
+///
+/// Exit codes: 0 ok, 1 the program does not compile, 2 bad command line
+/// (including an unknown variable in --print or --trace), 3 runtime fault
+/// (outputs set to 0/FALSE; the message names the fault, the POU and
+/// file:line:col).
+#[derive(Args)]
+pub struct RunArgs {
+    /// Source files or project directories (searched recursively for *.st).
+    #[arg(required = true, value_name = "PATH")]
+    paths: Vec<PathBuf>,
+    /// The PROGRAM to run when there is no CONFIGURATION and several PROGRAMs.
+    #[arg(long, value_name = "NAME")]
+    program: Option<String>,
+    /// Stop after N cycles of the fastest task (implies --virtual-clock).
+    #[arg(long, value_name = "N", conflicts_with = "duration")]
+    cycles: Option<u64>,
+    /// Stop when PLC time reaches TIME: a task of interval I runs at 0, I,
+    /// 2I, ... < TIME (implies --virtual-clock). TIME as `1s` or `T#1s500ms`.
+    #[arg(long, value_name = "TIME", value_parser = timearg::parse_duration)]
+    duration: Option<i64>,
+    /// Period of the cyclic task when there is no CONFIGURATION (`10ms` or `T#10ms`).
+    #[arg(long, value_name = "TIME", default_value = "10ms", value_parser = timearg::parse_duration)]
+    cycle_time: i64,
+    /// Run scans back to back on virtual PLC time instead of real time.
+    #[arg(long)]
+    virtual_clock: bool,
+    /// After the run, print `VAR = VALUE` (repeatable; in the order given).
+    /// VAR: `x` (a variable of the program), `inst.fb.Q`, `arr[2, 1].x`,
+    /// a global name, or a direct address such as `%QX0.1`. VALUE is an IEC
+    /// literal: TRUE, 42, 3.5, T#1s500ms, 'abc'.
+    #[arg(long = "print", value_name = "VAR")]
+    print: Vec<String>,
+    /// Variables to trace, separated by commas (repeatable): one CSV row per
+    /// scan with the PLC time then each value. Needs --trace-file.
+    #[arg(long, value_name = "VAR,...", requires = "trace_file")]
+    trace: Vec<String>,
+    /// The CSV file --trace writes: a header row (`time` and the variable
+    /// names), then one row per scan, every cell in the --print form
+    /// (`T#20ms,5,TRUE`).
+    #[arg(long, value_name = "FILE", requires = "trace")]
+    trace_file: Option<PathBuf>,
+    /// Keep RETAIN variables in FILE: loaded at start (warm start), saved
+    /// when the run stops (also after a runtime fault). A missing, damaged
+    /// or outdated file (the program's RETAIN variables changed) means a
+    /// cold start, with a warning for the last two.
+    #[arg(long, value_name = "FILE")]
+    retain: Option<PathBuf>,
+    /// Cold start: ignore the --retain file (it is still written at stop).
+    #[arg(long)]
+    cold: bool,
+    /// Print scan statistics (scan time min/avg/max, overruns, runs per
+    /// task) to stderr after the run.
+    #[arg(long)]
+    stats: bool,
+}
+
+/// Splits `--trace` values on the commas that are not inside `[...]`, so
+/// `a,arr[1, 2].x` is two variables.
+fn split_trace(values: &[String]) -> Vec<String> {
+    let mut out = Vec::new();
+    for v in values {
+        let mut depth = 0i32;
+        let mut cur = String::new();
+        for c in v.chars() {
+            match c {
+                '[' => depth += 1,
+                ']' => depth -= 1,
+                ',' if depth <= 0 => {
+                    out.push(std::mem::take(&mut cur).trim().to_string());
+                    continue;
+                }
+                _ => {}
+            }
+            cur.push(c);
+        }
+        out.push(cur.trim().to_string());
+    }
+    out
+}
+
+/// Parses, checks and lowers the project; diagnostics are printed to stderr.
+fn compile(args: &RunArgs) -> Result<Program, Outcome> {
+    let map: SourceMap = files::collect(&args.paths)
+        .and_then(|f| files::load(&f))
+        .map_err(|e| {
+            eprintln!("error: {e}");
+            Outcome::BadInput
+        })?;
+    let mut interner = Interner::new();
+    let (units, analysis) = automat_sema::check_sources(&map, &mut interner);
+    if !analysis.diagnostics.is_empty() {
+        eprint!("{}", render::render_report(&map, &analysis.diagnostics));
+    }
+    if analysis.has_errors() {
+        return Err(Outcome::ProgramErrors);
+    }
+    let opts = LowerOptions {
+        program: args.program.clone(),
+    };
+    lower(&units, &analysis, &interner, &map, &opts).map_err(|diags: Vec<Diagnostic>| {
+        eprint!("{}", render::render_report(&map, &diags));
+        // `--program` naming no PROGRAM is a command-line mistake.
+        if args.program.is_some() && diags.iter().all(|d| d.code == Code::E090) {
+            Outcome::BadInput
+        } else {
+            Outcome::ProgramErrors
+        }
+    })
+}
+
+/// Resolves every variable named on the command line.
+fn places(
+    program: &Program,
+    names: &[String],
+    option: &str,
+) -> Result<Vec<(String, Place)>, Outcome> {
+    names
+        .iter()
+        .map(|n| match resolve(program, n) {
+            Ok(p) => Ok((n.clone(), p)),
+            Err(e) => {
+                eprintln!("error: {option} {n}: {e}");
+                Err(Outcome::BadInput)
+            }
+        })
+        .collect()
+}
+
+fn warm_start(engine: &mut Engine, args: &RunArgs) {
+    let Some(path) = &args.retain else {
+        return;
+    };
+    if args.cold {
+        return;
+    }
+    let program = engine.program().clone();
+    match retain::load(&program, path, engine.image_mut()) {
+        Loaded::Warm | Loaded::NoFile => {}
+        Loaded::Cold(why) => eprintln!("warning: {}: {why}; cold start", path.display()),
+    }
+}
+
+pub fn run_cmd(args: &RunArgs) -> Outcome {
+    match run_inner(args) {
+        Ok(o) | Err(o) => o,
+    }
+}
+
+fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
+    if args.cycle_time <= 0 {
+        eprintln!("error: --cycle-time must be longer than 0");
+        return Err(Outcome::BadInput);
+    }
+    let program = compile(args)?;
+    let prints = places(&program, &args.print, "--print")?;
+    let traced = places(&program, &split_trace(&args.trace), "--trace")?;
+    let mut engine = Engine::new(program);
+    warm_start(&mut engine, args);
+
+    let mut trace = match &args.trace_file {
+        Some(path) => {
+            let file = File::create(path).map_err(|e| {
+                eprintln!("error: {}: {e}", path.display());
+                Outcome::BadInput
+            })?;
+            let t = Trace::new(traced, BufWriter::new(file)).map_err(|e| {
+                eprintln!("error: {}: {e}", path.display());
+                Outcome::BadInput
+            })?;
+            Some(t)
+        }
+        None => None,
+    };
+
+    let limit = match (args.cycles, args.duration) {
+        (Some(n), _) => Limit::Cycles(n),
+        (None, Some(d)) => Limit::Duration(d),
+        (None, None) => Limit::Unbounded,
+    };
+    let clock = if args.virtual_clock || limit != Limit::Unbounded {
+        ClockMode::Virtual
+    } else {
+        ClockMode::RealTime
+    };
+    let stop = Arc::new(AtomicBool::new(false));
+    if limit == Limit::Unbounded {
+        // Ctrl-C only asks the loop to stop; the scan in progress completes
+        // and the RETAIN variables are saved below.
+        let flag = Arc::clone(&stop);
+        if let Err(e) = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed)) {
+            eprintln!("warning: cannot handle Ctrl-C ({e}); stop the PLC with a signal");
+        }
+    }
+
+    let cfg = RunConfig {
+        cycle_time_ns: args.cycle_time,
+        clock,
+        limit,
+    };
+    let mut sys = SystemClock::new();
+    let (mut inputs, mut outputs) = (NoIo, NoIo);
+    let mut none = ();
+    let observer: &mut dyn ScanObserver = match trace.as_mut() {
+        Some(t) => t,
+        None => &mut none,
+    };
+    let mut env = Env {
+        clock: &mut sys,
+        inputs: &mut inputs,
+        outputs: &mut outputs,
+        observer,
+        stop: &stop,
+    };
+    let report = run(&mut engine, &cfg, &mut env).map_err(|e| {
+        eprintln!("error: {e}");
+        Outcome::BadInput
+    })?;
+    finish(args, &engine, trace, &prints, report)
+}
+
+/// After the run: trace flushed, RETAIN saved, values printed, fault reported.
+fn finish(
+    args: &RunArgs,
+    engine: &Engine,
+    trace: Option<Trace<BufWriter<File>>>,
+    prints: &[(String, Place)],
+    report: RunReport,
+) -> Result<Outcome, Outcome> {
+    let mut outcome = Outcome::Ok;
+    if let (Some(t), Some(path)) = (trace, &args.trace_file) {
+        if let Err(e) = t.finish() {
+            eprintln!("error: {}: {e}", path.display());
+            outcome = Outcome::BadInput;
+        }
+    }
+    if let Some(path) = &args.retain {
+        if let Err(e) = retain::save(engine.program(), path, engine.image()) {
+            eprintln!("error: {e}");
+            outcome = Outcome::BadInput;
+        }
+    }
+    for (name, place) in prints {
+        println!("{name} = {}", value::format(engine.image(), place));
+    }
+    if args.stats {
+        eprintln!("{}", report.stats);
+    }
+    match report.end {
+        RunEnd::Fault(f) => {
+            eprintln!("error: runtime fault: {f}");
+            eprintln!("note: the PLC stopped; every output was set to 0/FALSE");
+            Ok(Outcome::Fault)
+        }
+        RunEnd::Observer(e) => {
+            let shown = args
+                .trace_file
+                .as_ref()
+                .map_or(String::new(), |p| format!("{}: ", p.display()));
+            eprintln!("error: {shown}{e}");
+            Ok(Outcome::BadInput)
+        }
+        RunEnd::Limit | RunEnd::Stopped | RunEnd::TimeExhausted => Ok(outcome),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::split_trace;
+
+    #[test]
+    fn trace_lists_split_outside_brackets() {
+        assert_eq!(
+            split_trace(&["a, arr[1, 2].x,b".into(), "c".into()]),
+            ["a", "arr[1, 2].x", "b", "c"]
+        );
+    }
+}

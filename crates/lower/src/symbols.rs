@@ -1,0 +1,97 @@
+//! The symbol table entries: declared variables by qualified name, with
+//! their layout-level types.
+
+use crate::layout::Layout;
+use automat_base::Interner;
+use automat_iec::Elementary;
+use automat_ir::{Field, SymbolType};
+use automat_sema::model::Section;
+use automat_sema::types::{Elem, TypeId, TypeKind};
+
+pub fn elementary(e: Elem) -> Elementary {
+    Elementary::ALL
+        .get(e as usize)
+        .copied()
+        .unwrap_or(Elementary::Bool)
+}
+
+/// The layout-level type of a sema type.
+pub fn symbol_type(layout: &mut Layout, interner: &Interner, ty: TypeId, depth: u32) -> SymbolType {
+    let model = layout.model;
+    if depth > 64 {
+        return SymbolType::Struct {
+            name: "?".into(),
+            fields: Vec::new(),
+        };
+    }
+    match model.types.get(ty).clone() {
+        TypeKind::Error => SymbolType::Struct {
+            name: "?".into(),
+            fields: Vec::new(),
+        },
+        TypeKind::Elem(e) => SymbolType::Elementary(elementary(e)),
+        TypeKind::String { wide: false, len } => SymbolType::String { cap: len },
+        TypeKind::String { wide: true, len } => SymbolType::WString { cap: len },
+        TypeKind::Array { elem, dims } => SymbolType::Array {
+            stride: layout.stride(elem),
+            elem: Box::new(symbol_type(layout, interner, elem, depth + 1)),
+            dims: layout.dims(&dims),
+        },
+        TypeKind::Struct { name, members } => {
+            let offs = layout.fields(ty);
+            let fields = members
+                .iter()
+                .zip(offs)
+                .map(|(m, offset)| Field {
+                    name: interner.name(m.name).to_ascii_uppercase(),
+                    offset,
+                    bit: None,
+                    ty: symbol_type(layout, interner, m.ty, depth + 1),
+                })
+                .collect();
+            SymbolType::Struct {
+                name: name.map_or_else(String::new, |n| interner.name(n).to_ascii_uppercase()),
+                fields,
+            }
+        }
+        TypeKind::Enum { name, base, values } => SymbolType::Enum {
+            name: name.map_or_else(String::new, |n| interner.name(n).to_ascii_uppercase()),
+            base: elementary(base),
+            values: values
+                .iter()
+                .map(|v| (interner.name(v.name).to_ascii_uppercase(), v.value as i64))
+                .collect(),
+        },
+        TypeKind::Subrange { base, lo, hi } => SymbolType::Subrange {
+            base: elementary(base),
+            lo: lo as i64,
+            hi: hi as i64,
+        },
+        TypeKind::Fb { pou, name } | TypeKind::Program { pou, name } => {
+            let l = layout.pou(pou);
+            let mut fields = Vec::new();
+            if let Some(p) = model.pou(pou) {
+                for (v, slot) in p.vars.vars.iter().zip(l.slots.iter()) {
+                    if let crate::layout::Slot::Rel(offset) = slot {
+                        let t = symbol_type(layout, interner, v.ty, depth + 1);
+                        fields.push(Field {
+                            name: interner.name(v.name).to_ascii_uppercase(),
+                            offset: *offset,
+                            bit: None,
+                            ty: if v.section == Section::InOut {
+                                SymbolType::Ref(Box::new(t))
+                            } else {
+                                t
+                            },
+                        });
+                    }
+                }
+            }
+            SymbolType::Struct {
+                name: interner.name(name).to_ascii_uppercase(),
+                fields,
+            }
+        }
+        TypeKind::Ref(t) => SymbolType::Ref(Box::new(symbol_type(layout, interner, t, depth + 1))),
+    }
+}

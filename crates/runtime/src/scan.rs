@@ -1,0 +1,289 @@
+//! The scan loop: inputs → tasks due → outputs, paced by the clock, until a
+//! limit, a stop request or a fault.
+//!
+//! Stop conditions:
+//! - [`Limit::Cycles`]`(n)`: after the scan in which the fastest periodic
+//!   task ran for the n-th time (without periodic tasks: after n base ticks).
+//! - [`Limit::Duration`]`(d)`: before the first scan due at PLC time ≥ d,
+//!   so a task of interval I runs at 0, I, 2I, … < d.
+//! - the `stop` flag (Ctrl-C): checked between scans and while sleeping, so
+//!   a scan always completes.
+//! - a fault: the %Q area is zeroed (the safe state), written to the
+//!   outputs once more, and the run ends with [`RunEnd::Fault`].
+
+use crate::clock::{ClockMode, Monotonic};
+use crate::executor::Executor;
+use crate::io::{InputSource, OutputSink};
+use crate::schedule::Schedule;
+use crate::stats::Stats;
+use automat_ir::{Fault, TaskDef};
+use std::fmt;
+use std::ops::Range;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// When a run stops by itself.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Limit {
+    Cycles(u64),
+    Duration(i64),
+    /// Until the stop flag is set.
+    Unbounded,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RunConfig {
+    /// Base period when no task has an interval (`--cycle-time`).
+    pub cycle_time_ns: i64,
+    pub clock: ClockMode,
+    pub limit: Limit,
+}
+
+/// Sees the image after every scan in which a task ran (tracing,
+/// monitoring). An error ends the run with [`RunEnd::Observer`].
+pub trait ScanObserver {
+    fn after_scan(&mut self, plc_time_ns: i64, image: &[u8]) -> Result<(), String>;
+}
+
+impl ScanObserver for () {
+    fn after_scan(&mut self, _plc_time_ns: i64, _image: &[u8]) -> Result<(), String> {
+        Ok(())
+    }
+}
+
+/// The things at the edges of the scan loop.
+pub struct Env<'a> {
+    pub clock: &'a mut dyn Monotonic,
+    pub inputs: &'a mut dyn InputSource,
+    pub outputs: &'a mut dyn OutputSink,
+    pub observer: &'a mut dyn ScanObserver,
+    /// Set (e.g. by a Ctrl-C handler) to stop at the end of the scan.
+    pub stop: &'a AtomicBool,
+}
+
+/// A fault with the task and program instance it happened in.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FaultReport {
+    pub fault: Fault,
+    pub task: String,
+    pub instance: String,
+    pub plc_time_ns: i64,
+}
+
+impl fmt::Display for FaultReport {
+    /// `main.st:4:10: fault in MAIN: division by zero (task T1, program instance MAIN, PLC time T#20ms)`
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} (task {}, program instance {}, PLC time {})",
+            self.fault,
+            self.task,
+            self.instance,
+            automat_iec::format::format_duration(self.plc_time_ns, false)
+        )
+    }
+}
+
+/// Why a run ended.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum RunEnd {
+    /// `--cycles` or `--duration` reached.
+    Limit,
+    /// The stop flag was set.
+    Stopped,
+    /// PLC time reached the end of its range: nothing can be due any more.
+    TimeExhausted,
+    Fault(Box<FaultReport>),
+    Observer(String),
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RunReport {
+    pub end: RunEnd,
+    pub stats: Stats,
+    /// PLC time of the last scan that ran (`None` when none did).
+    pub last_scan_ns: Option<i64>,
+}
+
+/// How long the real-time loop sleeps at most before looking at the stop
+/// flag again, so Ctrl-C is served quickly even with long task intervals.
+const STOP_POLL_NS: i64 = 50_000_000;
+
+fn usize_range(r: &Range<u32>) -> Option<Range<usize>> {
+    Some(usize::try_from(r.start).ok()?..usize::try_from(r.end).ok()?)
+}
+
+struct Loop<'a, 'e, E: Executor> {
+    exec: &'a mut E,
+    env: &'a mut Env<'e>,
+    tasks: Vec<TaskDef>,
+    input: Option<Range<usize>>,
+    output: Option<Range<usize>>,
+    sched: Schedule,
+    stats: Stats,
+    due: Vec<usize>,
+    ticks: u64,
+    last_scan_ns: Option<i64>,
+}
+
+/// Runs the program of `exec` (whose image is already cold- or
+/// warm-started) until a stop condition. Errors only on an invalid
+/// configuration (a cycle time ≤ 0).
+pub fn run<E: Executor>(exec: &mut E, cfg: &RunConfig, env: &mut Env) -> Result<RunReport, String> {
+    let program = exec.program();
+    let tasks = program.tasks.clone();
+    let input = usize_range(&program.areas.input);
+    let output = usize_range(&program.areas.output);
+    let sched = Schedule::new(&tasks, cfg.cycle_time_ns)?;
+    let due = Vec::with_capacity(tasks.len());
+    let mut l = Loop {
+        exec,
+        env,
+        tasks,
+        input,
+        output,
+        sched,
+        stats: Stats::default(),
+        due,
+        ticks: 0,
+        last_scan_ns: None,
+    };
+    let end = l.run(cfg);
+    l.stats.task_runs = l
+        .tasks
+        .iter()
+        .enumerate()
+        .map(|(i, t)| (t.name.clone(), l.sched.runs(i)))
+        .collect();
+    Ok(RunReport {
+        end,
+        stats: l.stats,
+        last_scan_ns: l.last_scan_ns,
+    })
+}
+
+impl<E: Executor> Loop<'_, '_, E> {
+    fn run(&mut self, cfg: &RunConfig) -> RunEnd {
+        let origin = self.env.clock.now_ns();
+        loop {
+            if self.env.stop.load(Ordering::Relaxed) {
+                return RunEnd::Stopped;
+            }
+            if self.limit_reached(cfg.limit) {
+                return RunEnd::Limit;
+            }
+            let t = self.sched.next_tick();
+            if t == i64::MAX {
+                return RunEnd::TimeExhausted;
+            }
+            if let Limit::Duration(d) = cfg.limit {
+                if t >= d {
+                    return RunEnd::Limit;
+                }
+            }
+            if cfg.clock == ClockMode::RealTime && !self.wait_until(origin.saturating_add(t)) {
+                return RunEnd::Stopped;
+            }
+            let started = self.env.clock.now_ns();
+            if let Some(end) = self.scan(t) {
+                return end;
+            }
+            let ended = self.env.clock.now_ns();
+            if !self.due.is_empty() {
+                self.stats.record(ended.saturating_sub(started));
+            }
+            if cfg.clock == ClockMode::RealTime {
+                let late = ended.saturating_sub(origin);
+                if late > self.sched.next_tick() {
+                    self.stats.overruns += 1;
+                    self.sched.skip_to(late);
+                }
+            }
+        }
+    }
+
+    fn limit_reached(&self, limit: Limit) -> bool {
+        match (limit, self.sched.fastest()) {
+            (Limit::Cycles(n), Some(f)) => self.sched.runs(f) >= n,
+            (Limit::Cycles(n), None) => self.ticks >= n,
+            _ => false,
+        }
+    }
+
+    /// Sleeps until `deadline` on the monotonic clock; `false` when the stop
+    /// flag was set meanwhile.
+    fn wait_until(&mut self, deadline: i64) -> bool {
+        loop {
+            if self.env.stop.load(Ordering::Relaxed) {
+                return false;
+            }
+            let now = self.env.clock.now_ns();
+            if now >= deadline {
+                return true;
+            }
+            let step = deadline.min(now.saturating_add(STOP_POLL_NS));
+            self.env.clock.sleep_until(step);
+        }
+    }
+
+    /// One scan at PLC time `t`; `Some` when the run must end.
+    fn scan(&mut self, t: i64) -> Option<RunEnd> {
+        self.ticks += 1;
+        if let Some(area) = self
+            .input
+            .clone()
+            .and_then(|r| self.exec.image_mut().get_mut(r))
+        {
+            self.env.inputs.read(t, area);
+        }
+        self.sched.due(t, self.exec.image(), &mut self.due);
+        for &i in &self.due {
+            let Some(task) = self.tasks.get(i) else {
+                continue;
+            };
+            for inst in &task.programs {
+                if let Err(fault) = self.exec.run_program(inst, t) {
+                    let report = FaultReport {
+                        fault,
+                        task: task.name.clone(),
+                        instance: inst.name.clone(),
+                        plc_time_ns: t,
+                    };
+                    self.safe_state(t);
+                    return Some(RunEnd::Fault(Box::new(report)));
+                }
+            }
+        }
+        self.write_outputs(t);
+        if self.due.is_empty() {
+            return None;
+        }
+        self.last_scan_ns = Some(t);
+        self.env
+            .observer
+            .after_scan(t, self.exec.image())
+            .err()
+            .map(RunEnd::Observer)
+    }
+
+    fn write_outputs(&mut self, t: i64) {
+        if let Some(area) = self.output.clone().and_then(|r| self.exec.image().get(r)) {
+            self.env.outputs.write(t, area);
+        }
+    }
+
+    /// Every output to 0/FALSE, and the outputs told so.
+    fn safe_state(&mut self, t: i64) {
+        if let Some(area) = self
+            .output
+            .clone()
+            .and_then(|r| self.exec.image_mut().get_mut(r))
+        {
+            area.fill(0);
+        }
+        self.write_outputs(t);
+    }
+}
+
+#[cfg(test)]
+#[path = "scan_tests.rs"]
+mod tests;
