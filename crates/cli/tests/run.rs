@@ -487,6 +487,43 @@ fn stats_go_to_stderr() {
     let f = temp_file("stats.st", COUNTER);
     let (code, out, err) = run(&f, &["--cycles", "5", "--stats"]);
     assert_eq!((code, out.as_str()), (0, ""));
-    assert!(err.starts_with("scans: 5, scan time min/avg/max: "), "{err}");
+    assert!(
+        err.starts_with("scans: 5, scan time min/avg/max: "),
+        "{err}"
+    );
     assert!(err.ends_with(", overruns: 0, task runs: main=5\n"), "{err}");
+}
+
+#[test]
+fn timers_are_exact_on_the_virtual_clock() {
+    let src =
+        "PROGRAM main\nVAR\n    t : TON;\nEND_VAR\n    t(IN := TRUE, PT := T#50ms);\nEND_PROGRAM\n";
+    let f = temp_file("ton.st", src);
+    let (code, out, err) = run(&f, &["--cycles", "5", "--print", "t.Q", "--print", "t.ET"]);
+    assert_eq!(
+        (code, out.as_str()),
+        (0, "t.Q = FALSE\nt.ET = T#40ms\n"),
+        "{err}"
+    );
+    let csv = dir().join("ton.csv");
+    let csv_s = csv.display().to_string();
+    let (code, out, _) = run(
+        &f,
+        &[
+            "--duration",
+            "T#70ms",
+            "--trace",
+            "t.q,t.et",
+            "--trace-file",
+            &csv_s,
+            "--print",
+            "t.Q",
+        ],
+    );
+    assert_eq!((code, out.as_str()), (0, "t.Q = TRUE\n"));
+    assert_eq!(
+        std::fs::read_to_string(&csv).expect("trace"),
+        "time,t.q,t.et\nT#0s,FALSE,T#0s\nT#10ms,FALSE,T#10ms\nT#20ms,FALSE,T#20ms\n\
+         T#30ms,FALSE,T#30ms\nT#40ms,FALSE,T#40ms\nT#50ms,TRUE,T#50ms\nT#60ms,TRUE,T#50ms\n"
+    );
 }
