@@ -527,3 +527,21 @@ fn timers_are_exact_on_the_virtual_clock() {
          T#30ms,FALSE,T#30ms\nT#40ms,FALSE,T#40ms\nT#50ms,TRUE,T#50ms\nT#60ms,TRUE,T#50ms\n"
     );
 }
+
+#[test]
+fn direct_addresses_in_print_agree_with_the_code() {
+    // CODESYS convention: %QW2 is output bytes 4..5, so %QX4.1 is one of its bits.
+    let f = temp_file(
+        "addresses.st",
+        "PROGRAM P\nVAR w AT %QW2 : WORD; b AT %QX4.1 : BOOL; END_VAR\n    w := 16#0100;\n    b := TRUE;\nEND_PROGRAM\n",
+    );
+    let (code, out, err) = run(
+        &f,
+        &[
+            "--cycles", "1", "--print", "%QW2", "--print", "%QB4", "--print", "%QX5.0", "--print",
+            "w",
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out, "%QW2 = 258\n%QB4 = 2\n%QX5.0 = TRUE\nw = 258\n");
+}

@@ -141,6 +141,8 @@ pub enum Cmp {
 pub enum CheckKind {
     Index,
     Subrange,
+    /// Dereferencing a reference: 0 is NULL (`FaultKind::Function`).
+    Ref,
 }
 
 /// Standard functions implemented by the backend (with `automat-iec`).
@@ -168,6 +170,56 @@ pub enum Builtin {
     Str(StrFn, bool),
     /// Time and date arithmetic.
     Time(TimeFn),
+    /// `BCD_TO_*`: a bit string of type `.0` read as BCD into integer type `.1`;
+    /// a nibble above 9 faults (`FaultKind::Function`).
+    FromBcd(automat_iec::Elementary, automat_iec::Elementary),
+    /// `*_TO_BCD`: an integer of type `.0` written as BCD in bit string type `.1`.
+    ToBcd(automat_iec::Elementary, automat_iec::Elementary),
+    /// `ATAN2(Y, X)` of reals (`wide`: LREAL).
+    Atan2(bool),
+    /// Date and time composition and decomposition.
+    Date(DateFn),
+    /// STRING <-> WSTRING: (dst, cap, src); `true`: to WSTRING.
+    StrConv(bool),
+}
+
+/// CONCAT_DATE and friends: integer arguments in the standard's order,
+/// results in the IEC representation (DATE days, TOD and DT nanoseconds).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DateFn {
+    /// (year, month, day) -> DATE
+    ConcatDate,
+    /// (hour, minute, second, millisecond) -> TOD
+    ConcatTod,
+    /// (year, month, day, hour, minute, second, millisecond) -> DT
+    ConcatDt,
+    /// (DATE) -> 0 = Sunday .. 6 = Saturday
+    DayOfWeek,
+    /// One part of a DATE (days), TOD or DT (ns): (value) -> I64.
+    Part(DatePart, DateSrc),
+}
+
+/// Which part SPLIT_* extracts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DatePart {
+    Year,
+    Month,
+    Day,
+    Hour,
+    Minute,
+    Second,
+    Millisecond,
+}
+
+/// The representation SPLIT_* reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DateSrc {
+    /// Days since 1970-01-01.
+    Date,
+    /// Nanoseconds since midnight.
+    Tod,
+    /// Nanoseconds since 1970-01-01-00:00.
+    Dt,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -365,6 +417,15 @@ pub enum Inst {
         hi: i64,
         site: u32,
     },
+    /// Like `Check`, with bounds in registers (arrays of unknown size,
+    /// `ARRAY[*]`, whose bounds the caller passes).
+    CheckDyn {
+        kind: CheckKind,
+        val: Reg,
+        lo: Reg,
+        hi: Reg,
+        site: u32,
+    },
     /// The scan timestamp in ns.
     Now {
         dst: Reg,
@@ -403,6 +464,9 @@ pub struct Func {
     pub code: Vec<Inst>,
     /// Argument lists of [`Inst::Builtin`].
     pub args: Vec<Reg>,
+    /// Where statements start: (instruction index, site), ascending; names
+    /// the statement a fault without a site of its own (the watchdog) hit.
+    pub stmt_sites: Vec<(u32, u32)>,
 }
 
 impl Func {
@@ -421,6 +485,14 @@ impl Func {
     pub fn push(&mut self, inst: Inst) -> u32 {
         self.code.push(inst);
         self.code.len() as u32 - 1
+    }
+
+    /// The site of the statement instruction `pc` belongs to.
+    pub fn stmt_site(&self, pc: u32) -> Option<u32> {
+        let i = self.stmt_sites.partition_point(|&(at, _)| at <= pc);
+        i.checked_sub(1)
+            .and_then(|i| self.stmt_sites.get(i))
+            .map(|&(_, s)| s)
     }
 
     /// The argument registers of a builtin call.

@@ -193,6 +193,14 @@ impl V<'_> {
                 self.site(site)?;
                 self.reg(val, I64)
             }
+            Inst::CheckDyn {
+                val, lo, hi, site, ..
+            } => {
+                self.site(site)?;
+                self.reg(val, I64)?;
+                self.reg(lo, I64)?;
+                self.reg(hi, I64)
+            }
             Inst::Builtin {
                 op,
                 dst,
@@ -211,7 +219,10 @@ impl V<'_> {
                 }
                 if let (
                     Some(d),
-                    Builtin::Math(_, wide) | Builtin::Pow(wide) | Builtin::PowInt(wide),
+                    Builtin::Math(_, wide)
+                    | Builtin::Pow(wide)
+                    | Builtin::PowInt(wide)
+                    | Builtin::Atan2(wide),
                 ) = (dst, op)
                 {
                     self.float(d, wide)?;
@@ -246,6 +257,9 @@ pub fn verify(f: &Func, lim: Limits) -> Result<(), VerifyError> {
     for (i, inst) in f.code.iter().enumerate() {
         v.at = i;
         v.inst(inst)?;
+    }
+    for &(_, site) in &f.stmt_sites {
+        v.site(site)?;
     }
     match f.code.last() {
         Some(Inst::Ret | Inst::Jump { .. }) => Ok(()),

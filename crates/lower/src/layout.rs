@@ -7,10 +7,17 @@
 //! - STRING[n] = u16 length + n bytes; WSTRING[n] = u16 length + n u16.
 //! - Arrays row-major; structures and instances as their fields in order,
 //!   each naturally aligned; the size rounded up to the alignment.
-//! - VAR_IN_OUT and REF_TO: a u32 image offset.
-//! - Located variables are their area bytes: `%IX1.2` is bit 2 of input
-//!   byte 1; `%IB3`, `%IW3`, `%ID3`, `%IL3` start at byte 3 (byte
-//!   addressing, as TwinCAT and Siemens do).
+//! - VAR_IN_OUT and REF_TO: a u32 image offset, 0 being NULL. A
+//!   VAR_IN_OUT `ARRAY[*]` is the offset followed by `lo, hi` (i32) per
+//!   dimension, which the caller fills from the argument's type.
+//! - Located variables follow the CODESYS / OpenPLC convention: the number
+//!   of a sized address is an index in units of the access size, so
+//!   `%IB3` is input byte 3, `%QW2` output bytes 4..=5, `%MD1` memory bytes
+//!   4..=7, `%IL1` input bytes 8..=15; a bit address `%IX1.2` (or `%I1.2`)
+//!   is bit 2 of byte 1. Hence `%QX4.0` is bit 0 of `%QW2` (little-endian:
+//!   the low byte of the word comes first).
+//! - The image starts with [`RESERVED`] bytes nothing lives in, so that
+//!   offset 0 can be the NULL reference; then %I, %Q, %M.
 
 use automat_ir::code::MemTy;
 use automat_sema::model::Section;
@@ -39,6 +46,9 @@ pub struct PouLayout {
     /// Edge-qualified inputs (`R_EDGE`, `F_EDGE`): the variable's index and
     /// the offset of the hidden byte holding its previous raw value.
     pub edges: Vec<(u32, u32)>,
+    /// A function block without a declared ENO: the hidden byte holding
+    /// the ENO of its last call (`fb.ENO`), followed by the EN byte.
+    pub eno: Option<u32>,
     pub size: u32,
     pub align: u32,
 }
@@ -87,9 +97,15 @@ pub fn address_offset(a: &DirectAddress) -> (u32, Option<u8>) {
             let bit = a.path.get(1).copied().unwrap_or(0).min(7) as u8;
             (first, Some(bit))
         }
-        _ => (first, None),
+        AddrSize::Byte => (first, None),
+        AddrSize::Word => (first.saturating_mul(2), None),
+        AddrSize::DWord => (first.saturating_mul(4), None),
+        AddrSize::LWord => (first.saturating_mul(8), None),
     }
 }
+
+/// Bytes at the start of the image no variable uses (offset 0 is NULL).
+pub const RESERVED: u32 = 8;
 
 impl<'m> Layout<'m> {
     pub fn new(model: &'m Model) -> Layout<'m> {
@@ -103,8 +119,8 @@ impl<'m> Layout<'m> {
     }
 
     /// Sizes the areas from the highest located address used anywhere;
-    /// they start at offset 0: %I, then %Q, then %M.
-    pub fn size_areas(&mut self) -> u32 {
+    /// they start after the reserved bytes: %I, then %Q, then %M.
+    pub fn size_areas(&mut self, in_code: &[DirectAddress]) -> u32 {
         let mut ends = [0u32; 3];
         let mut note = |l: &Option<DirectAddress>, ty: TypeId, this: &mut Self| {
             if let Some(a) = l {
@@ -140,7 +156,16 @@ impl<'m> Layout<'m> {
         for v in all {
             note(&v.location, v.ty, self);
         }
-        let i = (0, ends[0]);
+        for a in in_code {
+            let ty = TypeId::elem(match a.size {
+                AddrSize::None | AddrSize::Bit | AddrSize::Byte => Elem::Byte,
+                AddrSize::Word => Elem::Word,
+                AddrSize::DWord => Elem::Dword,
+                AddrSize::LWord => Elem::Lword,
+            });
+            note(&Some(a.clone()), ty, self);
+        }
+        let i = (RESERVED, RESERVED + ends[0]);
         let q = (i.1, i.1 + ends[1]);
         let m = (q.1, q.1 + ends[2]);
         self.areas = AreaBases {
@@ -254,7 +279,8 @@ impl<'m> Layout<'m> {
                 continue;
             }
             let (s, a) = if v.section == Section::InOut {
-                (4, 4)
+                // The address, then (for ARRAY[*]) the bounds the caller passes.
+                (4 + 8 * self.star_rank(v.ty).unwrap_or(0), 4)
             } else {
                 self.size_at(v.ty, depth + 1)
             };
@@ -270,14 +296,35 @@ impl<'m> Layout<'m> {
                 off = off.saturating_add(1);
             }
         }
+        let syms = &self.model.syms;
+        let eno = (p.kind == automat_syntax::ast::PouKind::FunctionBlock
+            && p.vars.index(syms.eno).is_none())
+        .then(|| {
+            let at = off;
+            off = off.saturating_add(2);
+            at
+        });
         let l = PouLayout {
             slots,
             edges,
+            eno,
             size: align_up(off, al),
             align: al,
         };
         self.pous.insert(pou, l.clone());
         l
+    }
+
+    /// The number of dimensions of an array of unknown size (`ARRAY[*]`),
+    /// whose VAR_IN_OUT slot holds the address and then `lo, hi` (i32 each)
+    /// per dimension.
+    pub fn star_rank(&self, ty: TypeId) -> Option<u32> {
+        match self.model.types.get(ty) {
+            TypeKind::Array { dims, .. } if dims.iter().any(|d| matches!(d, Dim::Star)) => {
+                Some(dims.len() as u32)
+            }
+            _ => None,
+        }
     }
 
     /// Number of elements and the `(lo, hi)` bounds of an array type's dims.

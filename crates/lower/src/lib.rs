@@ -18,6 +18,7 @@
 //! - Calls are explicit: the caller stores inputs into the callee's instance
 //!   or frame, calls, then reads outputs.
 
+mod addrs;
 mod cx;
 mod gen;
 pub mod image;
@@ -68,7 +69,7 @@ pub fn lower(
         sites: Vec::new(),
         diags: Vec::new(),
     };
-    let areas_end = cx.layout.size_areas();
+    let areas_end = cx.layout.size_areas(&addrs::in_bodies(units));
     cx.top = areas_end;
     let mut entries = Vec::new();
     let mut retain = Vec::new();

@@ -72,6 +72,13 @@ pub fn symbol_type(layout: &mut Layout, interner: &Interner, ty: TypeId, depth: 
             let mut fields = Vec::new();
             if let Some(p) = model.pou(pou) {
                 for (v, slot) in p.vars.vars.iter().zip(l.slots.iter()) {
+                    // The standard blocks (TON, CTU, ...) show their interface
+                    // only: their private state is an implementation detail.
+                    if p.builtin
+                        && !matches!(v.section, Section::Input | Section::Output | Section::InOut)
+                    {
+                        continue;
+                    }
                     if let crate::layout::Slot::Rel(offset) = slot {
                         let t = symbol_type(layout, interner, v.ty, depth + 1);
                         fields.push(Field {

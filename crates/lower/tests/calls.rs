@@ -147,9 +147,11 @@ fn bits_shifts_and_located_variables() {
          END_PROGRAM",
     );
     let areas = p.engine.program().areas.clone();
-    assert_eq!(areas.input, 0..1);
-    assert_eq!(areas.output, 1..5);
-    p.engine.image_mut()[0] = 0b100;
+    // 8 reserved bytes (offset 0 is NULL), then %I (1 byte), then %Q up to
+    // %QW2 = bytes 4..=5 (the number counts words).
+    assert_eq!(areas.input, 8..9);
+    assert_eq!(areas.output, 9..15);
+    p.engine.image_mut()[8] = 0b100;
     p.run(1);
     assert_eq!(p.int("Main.b"), 1);
     assert_eq!(p.int("Main.w"), 0xF1);

@@ -119,3 +119,15 @@ fn counters_count_edges_and_triggers_and_bistables() {
     p.run(1);
     assert_eq!((p.int("Main.sr1.Q1"), p.int("Main.rs1.Q1")), (1, 0));
 }
+
+#[test]
+fn standard_blocks_show_only_their_interface() {
+    let p = timers();
+    let e = p.engine.program().symbols.get("Main.ton1").unwrap();
+    let automat_ir::SymbolType::Struct { name, fields } = &e.ty else {
+        panic!("{:?}", e.ty)
+    };
+    assert_eq!(name, "TON");
+    let names: Vec<&str> = fields.iter().map(|f| f.name.as_str()).collect();
+    assert_eq!(names, ["IN", "PT", "Q", "ET"]);
+}

@@ -12,9 +12,11 @@
 //! program has exactly one program instance, a path is first tried inside
 //! it (`x` is `MAIN.x`, as the program itself sees it), then as given.
 //!
-//! Direct addresses are byte addresses in their area, whatever the size:
-//! `%QX1.2` is bit 2 of output byte 1, `%QW4` the 16-bit word at output
-//! bytes 4 and 5 (little-endian).
+//! Direct addresses follow the CODESYS/OpenPLC convention that lowering uses
+//! (`automat_lower::layout::address_offset`): the number of a sized address
+//! counts units of its size, so `%QW2` is output bytes 4 and 5
+//! (little-endian), `%QD1` bytes 4..7, `%QB3` byte 3; `%QX1.2` is bit 2 of
+//! output byte 1.
 
 use automat_iec::Elementary;
 use automat_ir::{Program, SymbolType};
@@ -378,16 +380,15 @@ fn direct(program: &Program, text: &str, addr: &str) -> Result<Place, String> {
         ('X', [byte, bit]) if *bit < 8 => (*byte, u8::try_from(*bit).ok(), Elementary::Bool),
         ('X', [_, bit]) => return Err(bad(format!("bit {bit} is out of range 0..7"))),
         ('X', _) => return Err(bad("a bit address is `byte.bit`".into())),
-        (s, [n]) => (
-            *n,
-            None,
-            match s {
-                'B' => Elementary::Byte,
-                'W' => Elementary::Word,
-                'D' => Elementary::Dword,
-                _ => Elementary::Lword,
-            },
-        ),
+        (s, [n]) => {
+            let (unit, ty) = match s {
+                'B' => (1, Elementary::Byte),
+                'W' => (2, Elementary::Word),
+                'D' => (4, Elementary::Dword),
+                _ => (8, Elementary::Lword),
+            };
+            (n.saturating_mul(unit), None, ty)
+        }
         _ => {
             return Err(bad(
                 "a byte, word or double word address is one number".into()

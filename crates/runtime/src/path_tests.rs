@@ -137,17 +137,22 @@ fn names_members_indexes_and_bits() {
 }
 
 #[test]
-fn direct_addresses_are_byte_addresses_in_their_area() {
+fn direct_addresses_count_units_of_their_size() {
     let p = sample();
     assert_eq!(resolve(&p, "%QX0.1"), Ok(at(104, Some(1), E::Bool)));
     assert_eq!(resolve(&p, "%ix3.7"), Ok(at(103, Some(7), E::Bool)));
     assert_eq!(resolve(&p, "%I3.2"), Ok(at(103, Some(2), E::Bool)));
     assert_eq!(resolve(&p, "%QB2"), Ok(at(106, None, E::Byte)));
-    assert_eq!(resolve(&p, "%MW2"), Ok(at(110, None, E::Word)));
+    assert_eq!(resolve(&p, "%MW1"), Ok(at(110, None, E::Word)));
+    assert_eq!(resolve(&p, "%QW1"), Ok(at(106, None, E::Word)));
+    assert_eq!(
+        resolve(&p, "%MW2").unwrap_err(),
+        "`%MW2` is outside the area the program uses (4 bytes)"
+    );
     assert_eq!(resolve(&p, "%ID0"), Ok(at(100, None, E::Dword)));
     assert_eq!(
-        resolve(&p, "%QD2").unwrap_err(),
-        "`%QD2` is outside the area the program uses (4 bytes)"
+        resolve(&p, "%QD1").unwrap_err(),
+        "`%QD1` is outside the area the program uses (4 bytes)"
     );
     assert_eq!(
         resolve(&p, "%QX0.8").unwrap_err(),

@@ -6,7 +6,7 @@
 
 use super::{Failed, Gen, Lv, Res, Shape, Val, V};
 use crate::layout::Slot;
-use automat_ir::code::{Addr, Inst, MemTy};
+use automat_ir::code::{Addr, Base, Inst, MemTy};
 use automat_sema::model::Section;
 use automat_sema::types::{TypeId, TypeKind};
 use automat_sema::PouId;
@@ -16,8 +16,9 @@ use automat_syntax::ast::{Arg, ArgDir, Expr, ExprKind, PouKind};
 enum Bound {
     /// An input value, evaluated.
     In(Val),
-    /// The address of a VAR_IN_OUT argument.
-    Ref(u32),
+    /// The address of a VAR_IN_OUT argument, its type and (for an
+    /// `ARRAY[*]` argument) its bounds descriptor.
+    Ref(u32, TypeId, Option<Addr>),
 }
 
 impl Gen<'_, '_> {
@@ -28,14 +29,28 @@ impl Gen<'_, '_> {
         e: &Expr,
         want: Option<TypeId>,
     ) -> Res<Val> {
+        let (c, rest) = self.split_en(args);
+        let args = rest.as_slice();
         // An FB instance (a variable or a member).
         if let Ok(lv) = self.fb_place(callee) {
             if let TypeKind::Fb { pou, .. } = self.kind(lv.ty) {
                 let pou = *pou;
-                self.pou_call(pou, lv.addr, args, e, false)?;
-                return Ok(Val {
-                    v: V::I(self.iconst(0)),
-                    ty: TypeId::BOOL,
+                let hidden = self
+                    .cx
+                    .layout
+                    .pou(pou)
+                    .eno
+                    .map(|off| super::expr::add(lv.addr, off));
+                return self.with_en(&c, hidden, |g| {
+                    g.pou_call(pou, lv.addr, args, e, false)?;
+                    let eno = g.declared_eno(pou, lv.addr);
+                    Ok((
+                        Val {
+                            v: V::I(g.iconst(0)),
+                            ty: TypeId::BOOL,
+                        },
+                        eno,
+                    ))
                 });
             }
         }
@@ -51,14 +66,36 @@ impl Gen<'_, '_> {
                     .copied()
                     .flatten()
                     .ok_or(Failed)?;
-                self.pou_call(pid, Addr::abs(frame), args, e, true)?;
-                return self.result(pid, frame, e);
+                return self.with_en(&c, None, |g| {
+                    g.pou_call(pid, Addr::abs(frame), args, e, true)?;
+                    let eno = g.declared_eno(pid, Addr::abs(frame));
+                    Ok((g.result(pid, frame, e)?, eno))
+                });
             }
         }
         let name = self.cx.interner.name(id.sym).to_string();
         match automat_sema::stdlib::lookup(&name) {
-            Some(sig) => self.std_call(&sig, args, e, want),
+            Some(sig) => self.with_en(&c, None, |g| Ok((g.std_call(&sig, args, e, want)?, None))),
             None => Err(self.error(callee.span, format!("cannot call {name}"))),
+        }
+    }
+
+    /// The callee's own ENO output after a call, when it declares one.
+    fn declared_eno(&mut self, pou: PouId, base: Addr) -> Option<u32> {
+        let p = self.cx.model.pou(pou)?;
+        let idx = p.vars.index(self.cx.model.syms.eno)?;
+        let var = p.vars.vars.get(idx as usize)?;
+        let Some(Slot::Rel(off)) = self.cx.layout.pou(pou).slots.get(idx as usize).copied() else {
+            return None;
+        };
+        let v = self.load(Lv {
+            addr: super::expr::add(base, off),
+            bit: None,
+            ty: var.ty,
+        });
+        match v.v {
+            V::I(r) => Some(r),
+            _ => None,
         }
     }
 
@@ -101,7 +138,8 @@ impl Gen<'_, '_> {
         let mut outputs: Vec<(u32, &Arg)> = Vec::new();
         for (k, a) in args.iter().enumerate() {
             if a.name.is_some_and(|n| n.sym == en || n.sym == eno) {
-                return Err(self.error(a.span, "EN/ENO are not supported yet".into()));
+                // Handled by `with_en`; only a declared ENO output gets here.
+                continue;
             }
             let idx = match a.name {
                 // CODESYS spells the counters' R as RESET.
@@ -127,7 +165,11 @@ impl Gen<'_, '_> {
                     let Some(v) = &a.value else { continue };
                     let lv = self.place(v)?;
                     let r = self.addr_reg(lv.addr);
-                    inputs.push((idx, Bound::Ref(r)));
+                    let desc = match lv.addr.base {
+                        Base::Reg(x) if lv.addr.offset == 0 => self.star.get(&x).copied(),
+                        _ => None,
+                    };
+                    inputs.push((idx, Bound::Ref(r, lv.ty, desc)));
                 }
                 (ArgDir::Out | ArgDir::OutNot, Section::Output) | (ArgDir::In, Section::Output) => {
                     outputs.push((idx, a));
@@ -179,12 +221,15 @@ impl Gen<'_, '_> {
                     v,
                     e.span,
                 )?,
-                Bound::Ref(r) => {
+                Bound::Ref(r, arg_ty, desc) => {
                     self.emit(Inst::Store {
                         src: r,
                         ty: MemTy::U32,
                         addr: at,
                     });
+                    if let Some(n) = self.cx.layout.star_rank(var.ty) {
+                        self.pass_bounds(super::expr::add(at, 4), n, arg_ty, desc);
+                    }
                 }
             }
         }
@@ -248,8 +293,8 @@ impl Gen<'_, '_> {
                 })
             }
             _ => {
-                let (size, align) = self.cx.layout.size(v.ty);
-                let t = Addr::abs(self.cx.alloc(size, align));
+                let (size, _) = self.cx.layout.size(v.ty);
+                let t = self.temp(size);
                 self.emit(Inst::Copy {
                     dst: t,
                     src,
@@ -287,5 +332,32 @@ impl Gen<'_, '_> {
             ty: ret_ty,
         });
         self.stabilise(v)
+    }
+
+    /// Fills the bounds of an `ARRAY[*]` parameter from the argument: its
+    /// declared bounds, or the bounds it was itself passed.
+    fn pass_bounds(&mut self, at: Addr, n: u32, arg_ty: TypeId, desc: Option<Addr>) {
+        if let Some(d) = desc {
+            self.emit(Inst::Copy {
+                dst: at,
+                src: super::expr::add(d, 4),
+                len: 8 * n,
+            });
+            return;
+        }
+        let TypeKind::Array { dims, .. } = self.kind(arg_ty) else {
+            return;
+        };
+        let bounds = self.cx.layout.dims(dims);
+        for (k, (lo, hi)) in bounds.into_iter().take(n as usize).enumerate() {
+            for (j, v) in [lo, hi].into_iter().enumerate() {
+                let r = self.iconst(v);
+                self.emit(Inst::Store {
+                    src: r,
+                    ty: MemTy::I32,
+                    addr: super::expr::add(at, 8 * k as u32 + 4 * j as u32),
+                });
+            }
+        }
     }
 }

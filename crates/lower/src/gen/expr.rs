@@ -229,10 +229,8 @@ impl Gen<'_, '_> {
                     ty: TypeId::elem(el),
                 })
             }
-            _ => Err(self.error(
-                e.span,
-                "this expression is not supported as a variable (references, dereferencing)".into(),
-            )),
+            ExprKind::Deref(base) => self.deref_place(base, e),
+            _ => Err(self.error(e.span, "this expression is not a variable".into())),
         }
     }
 
@@ -252,6 +250,23 @@ impl Gen<'_, '_> {
             TypeKind::Fb { pou, .. } | TypeKind::Program { pou, .. } => {
                 let pou = *pou;
                 let p = self.cx.model.pou(pou).ok_or(Failed)?;
+                let syms = &self.cx.model.syms;
+                let hidden = self.cx.layout.pou(pou).eno;
+                match (p.vars.index(name), hidden) {
+                    (None, Some(at)) if name == syms.eno || name == syms.en => {
+                        let at = if name == syms.eno { at } else { at + 1 };
+                        return Ok(Lv {
+                            addr: add(b.addr, at),
+                            bit: None,
+                            ty: TypeId::BOOL,
+                        });
+                    }
+                    (None, _) => {
+                        let n = self.cx.interner.name(name).to_string();
+                        return Err(self.error(e.span, format!("{n} is not a member here")));
+                    }
+                    _ => {}
+                }
                 let idx = p.vars.index(name).ok_or(Failed)?;
                 let var = p.vars.vars.get(idx as usize).ok_or(Failed)?;
                 let slot = self.cx.layout.pou(pou).slots.get(idx as usize).copied();
@@ -292,6 +307,13 @@ impl Gen<'_, '_> {
         };
         let elem = *elem;
         let bounds = self.cx.layout.dims(dims);
+        let desc = match b.addr.base {
+            automat_ir::code::Base::Reg(r) if b.addr.offset == 0 => self.star.get(&r).copied(),
+            _ => None,
+        };
+        if let (Some(d), true) = (desc, bounds.len() == indices.len()) {
+            return self.index_star(b, d, elem, indices);
+        }
         if bounds.len() != indices.len() || bounds.iter().any(|(lo, hi)| lo > hi) {
             return Err(self.error(
                 e.span,
@@ -384,5 +406,69 @@ pub fn add(a: Addr, k: u32) -> Addr {
     Addr {
         base: a.base,
         offset: a.offset.wrapping_add(k),
+    }
+}
+
+impl Gen<'_, '_> {
+    /// An element of a VAR_IN_OUT `ARRAY[*]`: bounds come from the
+    /// descriptor the caller filled (`lo, hi` i32 per dimension at +4).
+    fn index_star(&mut self, b: Lv, desc: Addr, elem: TypeId, indices: &[Expr]) -> Res<Lv> {
+        let stride = self.cx.layout.stride(elem) as i64;
+        let mut los = Vec::with_capacity(indices.len());
+        let mut his = Vec::with_capacity(indices.len());
+        for k in 0..indices.len() as u32 {
+            for (j, out) in [&mut los, &mut his].into_iter().enumerate() {
+                let r = self.reg(RegClass::I64);
+                self.emit(Inst::Load {
+                    dst: r,
+                    ty: automat_ir::code::MemTy::I32,
+                    addr: add(desc, 4 + 8 * k + 4 * j as u32),
+                });
+                out.push(r);
+            }
+        }
+        // Row-major: offset = ((i0 - lo0) * n1 + (i1 - lo1)) * n2 + ... , times the stride.
+        let one = self.iconst(1);
+        let mut acc: Option<u32> = None;
+        for (k, ix) in indices.iter().enumerate() {
+            let (lo, hi) = (los[k], his[k]);
+            let r = self.int_expr(ix)?;
+            let site = self.site(ix.span);
+            self.emit(Inst::CheckDyn {
+                kind: CheckKind::Index,
+                val: r,
+                lo,
+                hi,
+                site,
+            });
+            let rel = self.int_op(IntOp::Sub, r, lo);
+            acc = Some(match acc {
+                None => rel,
+                Some(a) => {
+                    let span = self.int_op(IntOp::Sub, hi, lo);
+                    let n = self.int_op(IntOp::Add, span, one);
+                    let m = self.int_op(IntOp::Mul, a, n);
+                    self.int_op(IntOp::Add, m, rel)
+                }
+            });
+        }
+        let Some(acc) = acc else {
+            return Err(Failed);
+        };
+        let s = self.iconst(stride);
+        let off = self.int_op(IntOp::Mul, acc, s);
+        let base = self.addr_reg(b.addr);
+        let at = self.int_op(IntOp::Add, base, off);
+        Ok(Lv {
+            addr: Addr::reg(at, 0),
+            bit: None,
+            ty: elem,
+        })
+    }
+
+    fn int_op(&mut self, op: IntOp, a: u32, b: u32) -> u32 {
+        let d = self.reg(RegClass::I64);
+        self.emit(Inst::Int { op, dst: d, a, b });
+        d
     }
 }

@@ -6,10 +6,13 @@
 //! and calls ([`call`], [`stdfn`]) build on that.
 
 mod call;
+mod en;
 mod expr;
 mod forloop;
 mod ops;
+mod refs;
 mod stdfn;
+mod stdmore;
 mod stmt;
 
 pub use stmt::pou;
@@ -73,6 +76,14 @@ pub struct Gen<'c, 'a> {
     loops: Vec<LoopCx>,
     /// Jumps to the epilogue (RETURN).
     returns: Vec<u32>,
+    /// Registers holding the address of a VAR_IN_OUT `ARRAY[*]`, with the
+    /// address of its descriptor (bounds at +4).
+    pub star: rustc_hash::FxHashMap<Reg, Addr>,
+    /// Scratch buffers for string results and copied aggregates: (offset,
+    /// size). Handed out in turn within a statement and reused by the next
+    /// one, so a POU needs only as many as its busiest statement.
+    temps: Vec<(u32, u32)>,
+    temps_used: usize,
 }
 
 struct LoopCx {
@@ -89,6 +100,9 @@ impl<'c, 'a> Gen<'c, 'a> {
             frame,
             loops: Vec::new(),
             returns: Vec::new(),
+            star: rustc_hash::FxHashMap::default(),
+            temps: Vec::new(),
+            temps_used: 0,
         }
     }
 
@@ -172,6 +186,8 @@ impl<'c, 'a> Gen<'c, 'a> {
             TypeKind::Elem(e)
             | TypeKind::Subrange { base: e, .. }
             | TypeKind::Enum { base: e, .. } => Some(*e),
+            // A reference is a u32 image offset.
+            TypeKind::Ref(_) => Some(Elem::Udint),
             _ => None,
         }
     }
@@ -221,11 +237,15 @@ impl<'c, 'a> Gen<'c, 'a> {
         Ok(match slot {
             Slot::Rel(off) if var.section == Section::InOut => {
                 let r = self.reg(RegClass::I64);
+                let at = base(off, self.frame);
                 self.emit(Inst::Load {
                     dst: r,
                     ty: MemTy::U32,
-                    addr: base(off, self.frame),
+                    addr: at,
                 });
+                if self.cx.layout.star_rank(var.ty).is_some() {
+                    self.star.insert(r, at);
+                }
                 Lv {
                     addr: Addr::reg(r, 0),
                     bit: None,
@@ -346,6 +366,29 @@ impl<'c, 'a> Gen<'c, 'a> {
     /// A temporary string buffer of `cap` characters in the image.
     pub fn temp_str(&mut self, wide: bool, cap: u32) -> Addr {
         let size = 2 + cap * if wide { 2 } else { 1 };
-        Addr::abs(self.cx.alloc(size, 2))
+        self.temp(size)
+    }
+
+    /// A scratch buffer of `size` bytes (8-aligned) for the current statement.
+    pub fn temp(&mut self, size: u32) -> Addr {
+        let k = self.temps_used;
+        self.temps_used += 1;
+        match self.temps.get(k).copied() {
+            Some((at, have)) if have >= size => Addr::abs(at),
+            _ => {
+                let at = self.cx.alloc(size, 8);
+                if let Some(slot) = self.temps.get_mut(k) {
+                    *slot = (at, size);
+                } else {
+                    self.temps.push((at, size));
+                }
+                Addr::abs(at)
+            }
+        }
+    }
+
+    /// A new statement: the scratch buffers of the previous one are dead.
+    pub fn free_temps(&mut self) {
+        self.temps_used = 0;
     }
 }

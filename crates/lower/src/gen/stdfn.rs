@@ -166,10 +166,19 @@ impl Gen<'_, '_> {
                     _ => BinaryOp::Xor,
                 };
                 if el.is_duration() || el.is_date() {
-                    return Err(self.error(
-                        e.span,
-                        format!("{} on times is not supported; use the operator", sig.name),
-                    ));
+                    // Time arithmetic (ADD_TIME, SUB_DT_DT, ...) is the operator's.
+                    let mut acc = arg(0)?.clone();
+                    for x in xs.iter().skip(1) {
+                        acc = Expr {
+                            kind: automat_syntax::ast::ExprKind::Binary {
+                                op,
+                                lhs: Box::new(acc),
+                                rhs: Box::new((*x).clone()),
+                            },
+                            span: e.span,
+                        };
+                    }
+                    return self.expr(&acc, Some(ty));
                 }
                 let mut acc = self.expr(arg(0)?, Some(ty))?;
                 for x in xs.iter().skip(1) {
@@ -412,10 +421,7 @@ impl Gen<'_, '_> {
                     ty: TypeId::elem(Elem::Time),
                 })
             }
-            _ => Err(self.error(
-                e.span,
-                format!("standard function {} is not supported yet", sig.name),
-            )),
+            _ => self.std_more(sig, &pos, e, want, rty),
         }
     }
 
@@ -461,6 +467,18 @@ impl Gen<'_, '_> {
             }
             (Shape::Str { wide: a, .. }, Shape::Str { wide: b, .. }) if a == b => {
                 Ok(Val { v: v.v, ty: to })
+            }
+            (Shape::Str { .. }, Shape::Str { wide, .. }) => {
+                let V::M(src) = v.v else { return Err(Failed) };
+                let out = self.temp_str(wide, TEMP_CAP);
+                let d = self.addr_reg(out);
+                let cap = self.iconst(TEMP_CAP as i64);
+                let s = self.addr_reg(src);
+                self.builtin(Builtin::StrConv(wide), None, &[d, cap, s], e.span);
+                Ok(Val {
+                    v: V::M(out),
+                    ty: to,
+                })
             }
             _ => Err(self.error(e.span, "this conversion is not supported yet".into())),
         }

@@ -139,6 +139,11 @@ impl Gen<'_, '_> {
     }
 
     fn stmt(&mut self, s: &Stmt) -> Res<()> {
+        // No value of an earlier statement is still needed.
+        self.free_temps();
+        let at = self.here();
+        let site = self.site(s.span);
+        self.f.stmt_sites.push((at, site));
         match &s.kind {
             StmtKind::Assign { target, value } => {
                 let lv = self.place(target)?;

@@ -1,0 +1,94 @@
+//! References: `REF(x)` / `ADR(x)` (the image offset of a variable),
+//! dereferencing `r^` (faults on NULL), and `SIZEOF(x)`.
+
+use super::{Failed, Gen, Lv, Res, Val, V};
+use automat_ir::code::{Addr, CheckKind, Inst};
+use automat_sema::ops::Ty;
+use automat_sema::types::{Elem, TypeId, TypeKind};
+use automat_syntax::ast::{Expr, ExprKind};
+
+impl Gen<'_, '_> {
+    /// The variable `r^` designates.
+    pub fn deref_place(&mut self, base: &Expr, e: &Expr) -> Res<Lv> {
+        // `REF(x)^` is `x` itself.
+        if let Some(inner) = self.ref_call_arg(base) {
+            return self.place(inner);
+        }
+        let v = self.expr(base, None)?;
+        let target = match self.kind(v.ty) {
+            TypeKind::Ref(t) => *t,
+            _ => {
+                return Err(self.error(
+                    e.span,
+                    "only a REF_TO variable can be dereferenced here".into(),
+                ))
+            }
+        };
+        let V::I(r) = v.v else { return Err(Failed) };
+        let site = self.site(e.span);
+        self.emit(Inst::Check {
+            kind: CheckKind::Ref,
+            val: r,
+            lo: 1,
+            hi: i64::from(u32::MAX),
+            site,
+        });
+        Ok(Lv {
+            addr: Addr::reg(r, 0),
+            bit: None,
+            ty: target,
+        })
+    }
+
+    /// The argument of a `REF(x)` / `ADR(x)` call.
+    fn ref_call_arg<'e>(&self, e: &'e Expr) -> Option<&'e Expr> {
+        let ExprKind::Call { callee, args } = &e.kind else {
+            return None;
+        };
+        let ExprKind::Name(id) = &callee.kind else {
+            return None;
+        };
+        if self.cx.model.pou_named(id.sym).is_some() {
+            return None;
+        }
+        let name = self.cx.interner.name(id.sym);
+        let is_ref = name.eq_ignore_ascii_case("REF") || name.eq_ignore_ascii_case("ADR");
+        match (is_ref, args.as_slice()) {
+            (true, [a]) => a.value.as_ref(),
+            _ => None,
+        }
+    }
+
+    /// `REF(x)` / `ADR(x)`: the offset of `x`, typed `REF_TO <type of x>`
+    /// when that type exists (else the wanted reference type, else UDINT).
+    pub fn ref_of(&mut self, x: &Expr, want: Option<TypeId>, e: &Expr) -> Res<Val> {
+        let lv = self.place(x)?;
+        if lv.bit.is_some() {
+            return Err(self.error(
+                e.span,
+                "a reference to a single bit (a BOOL at a bit address) is not possible".into(),
+            ));
+        }
+        let r = self.addr_reg(lv.addr);
+        let ty = match want.map(|w| self.kind(w)) {
+            Some(TypeKind::Ref(t)) if *t == lv.ty => want,
+            _ => None,
+        }
+        .or_else(|| self.cx.model.types.find_ref(lv.ty))
+        .unwrap_or(TypeId::elem(Elem::Udint));
+        Ok(Val { v: V::I(r), ty })
+    }
+
+    /// `SIZEOF(x)`: the bytes `x` occupies (a VAR_IN_OUT: its target's).
+    pub fn size_of(&mut self, x: &Expr) -> Res<Val> {
+        let ty = match self.typed(x).ty {
+            Ty::Of(t) => t,
+            t => self.concrete(t, None, None).ok_or(Failed)?,
+        };
+        let (n, _) = self.cx.layout.size(ty);
+        Ok(Val {
+            v: V::I(self.iconst(i64::from(n))),
+            ty: TypeId::elem(Elem::Udint),
+        })
+    }
+}
