@@ -164,8 +164,12 @@ mod tests {
     fn human_format_has_location_code_and_caret() {
         let mut map = SourceMap::new();
         let f = map.add("p.st", "PROGRAM p\n  i := d;\nEND_PROGRAM\n");
-        let d = Diagnostic::error(Code::E030, Span::new(f, 17, 18), "cannot assign DINT to INT")
-            .with_note("use DINT_TO_INT");
+        let d = Diagnostic::error(
+            Code::E030,
+            Span::new(f, 17, 18),
+            "cannot assign DINT to INT",
+        )
+        .with_note("use DINT_TO_INT");
         let s = render_human(&map, &d);
         assert_eq!(
             s,

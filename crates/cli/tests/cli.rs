@@ -24,7 +24,12 @@ const BAD: &str = "PROGRAM p\nVAR\n    i : INT;\n    d : DINT;\nEND_VAR\n    i :
 fn clean_project_exits_0_and_prints_nothing() {
     let crane = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/crane");
     let out = automat(&["check", crane]);
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stdout));
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
     assert!(out.stdout.is_empty());
 }
 
@@ -35,7 +40,12 @@ fn errors_exit_1_with_location_code_and_caret() {
     assert_eq!(out.status.code(), Some(1));
     let text = String::from_utf8_lossy(&out.stdout);
     let first = text.lines().next().unwrap_or("");
-    assert!(first.ends_with("bad.st:6:10: error[E030]: cannot assign a value of type DINT to `i` of type INT"), "{text}");
+    assert!(
+        first.ends_with(
+            "bad.st:6:10: error[E030]: cannot assign a value of type DINT to `i` of type INT"
+        ),
+        "{text}"
+    );
     assert!(text.contains("6 |     i := d;\n  |          ^"), "{text}");
     assert!(text.contains("bad.st:7:5: error[E020]"), "{text}");
     assert!(text.contains("2 errors, 0 warnings"), "{text}");
@@ -63,7 +73,10 @@ fn missing_path_and_bad_flags_exit_2() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("/definitely/not/here.st"));
     assert_eq!(automat(&["check"]).status.code(), Some(2));
-    assert_eq!(automat(&["check", "--format", "xml", "x.st"]).status.code(), Some(2));
+    assert_eq!(
+        automat(&["check", "--format", "xml", "x.st"]).status.code(),
+        Some(2)
+    );
     assert_eq!(automat(&["frobnicate"]).status.code(), Some(2));
 }
 
@@ -89,7 +102,16 @@ fn non_utf8_source_is_read_not_rejected() {
     std::fs::create_dir_all(&dir).expect("dir");
     let path = dir.join("latin1.st");
     // A Latin-1 'é' (0xE9) inside a comment.
-    std::fs::write(&path, b"(* caf\xe9 *)\nPROGRAM p\nVAR x : INT; END_VAR\n x := 1;\nEND_PROGRAM\n").expect("write");
+    std::fs::write(
+        &path,
+        b"(* caf\xe9 *)\nPROGRAM p\nVAR x : INT; END_VAR\n x := 1;\nEND_PROGRAM\n",
+    )
+    .expect("write");
     let out = automat(&["check", path.to_str().unwrap()]);
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stdout));
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
 }

@@ -29,7 +29,10 @@ fn crane_runs_cycle_one_waits_then_returns() {
     // Pornire is pressed at 0.5 s: up (5 s), right (5 s), down (5 s), 3 s dwell,
     // up, left, down, back at rest 1 after about 33.5 s.
     let at = |t: &str| run_crane(t, &["Ctrl.step", "Sim.cycles"]);
-    assert_eq!(at("400ms"), ["Ctrl.step = CRANESTEP#REST1", "Sim.cycles = 0"]);
+    assert_eq!(
+        at("400ms"),
+        ["Ctrl.step = CRANESTEP#REST1", "Sim.cycles = 0"]
+    );
     assert_eq!(at("1s"), ["Ctrl.step = CRANESTEP#UP1", "Sim.cycles = 0"]);
     assert_eq!(at("8s"), ["Ctrl.step = CRANESTEP#RIGHT", "Sim.cycles = 0"]);
     assert_eq!(at("13s"), ["Ctrl.step = CRANESTEP#DOWN1", "Sim.cycles = 0"]);
@@ -45,7 +48,13 @@ fn crane_runs_cycle_one_waits_then_returns() {
 fn crane_outputs_are_off_at_rest_and_never_collide() {
     let out = run_crane(
         "60s",
-        &["Ctrl.M1S", "Ctrl.M1D", "Ctrl.M2S", "Ctrl.M2J", "Sim.collision"],
+        &[
+            "Ctrl.M1S",
+            "Ctrl.M1D",
+            "Ctrl.M2S",
+            "Ctrl.M2J",
+            "Sim.collision",
+        ],
     );
     assert_eq!(
         out,

@@ -9,7 +9,11 @@ use automat_base::{render, Interner, SourceMap};
 #[test]
 fn generated_project_checks_clean() {
     let files = gen::project(6);
-    assert!(gen::line_count(&files) > 6 * 140, "{}", gen::line_count(&files));
+    assert!(
+        gen::line_count(&files) > 6 * 140,
+        "{}",
+        gen::line_count(&files)
+    );
     let mut map = SourceMap::new();
     for (name, text) in &files {
         map.add(name.clone(), text.clone());

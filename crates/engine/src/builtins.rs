@@ -159,8 +159,60 @@ pub fn call(ctx: &mut Ctx, op: Builtin, dst: Option<Reg>, args: &[Reg]) -> R {
             .map_err(iec)?;
             set(ctx, r as u64);
         }
+        Builtin::FromBcd(from, to) => {
+            let v = to_value(ctx.get(a(0)?), from);
+            let r = automat_iec::convert::from_bcd(&v, to).map_err(bcd)?;
+            set(ctx, from_value(&r));
+        }
+        Builtin::ToBcd(from, to) => {
+            let v = to_value(ctx.get(a(0)?), from);
+            let r = automat_iec::convert::to_bcd(&v, to).map_err(bcd)?;
+            set(ctx, from_value(&r));
+        }
+        Builtin::Atan2(wide) => {
+            let (y, x) = (ctx.get(a(0)?), ctx.get(a(1)?));
+            let r = if wide {
+                f64::from_bits(y).atan2(f64::from_bits(x)).to_bits()
+            } else {
+                f32::from_bits(y as u32)
+                    .atan2(f32::from_bits(x as u32))
+                    .to_bits() as u64
+            };
+            set(ctx, r);
+        }
+        Builtin::Date(d) => {
+            let mut xs = [0i64; 7];
+            for (i, x) in xs.iter_mut().enumerate().take(args.len().min(7)) {
+                *x = ctx.get(a(i)?) as i64;
+            }
+            let r = crate::dates::call(d, &xs).map_err(iec)?;
+            set(ctx, r as u64);
+        }
+        Builtin::StrConv(to_wide) => {
+            let (d, cap, s) = (
+                ctx.get(a(0)?) as u32,
+                ctx.get(a(1)?) as u32,
+                ctx.get(a(2)?) as u32,
+            );
+            let ok = if to_wide {
+                let w = automat_iec::convert::str_to_wstr(&mem::read_str(ctx.image, s));
+                mem::write_wstr(ctx.image, d, cap, &w)
+            } else {
+                let n = automat_iec::convert::wstr_to_str(&mem::read_wstr(ctx.image, s));
+                mem::write_str(ctx.image, d, cap, &n)
+            };
+            ok.ok_or((
+                FaultKind::Function,
+                format!("string store at {d} outside the image"),
+            ))?;
+        }
     }
     Ok(())
+}
+
+/// BCD errors are function faults whatever the library calls them.
+fn bcd(e: IecError) -> (FaultKind, String) {
+    (FaultKind::Function, e.message)
 }
 
 fn math(m: MathFn, x: f64) -> f64 {

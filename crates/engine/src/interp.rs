@@ -2,7 +2,7 @@
 //! F32 and F64 as their IEEE bits. Register indexes were verified in
 //! `Engine::new`, so the window arithmetic stays inside the register file.
 
-use crate::{builtins, mem, Engine};
+use crate::{builtins, fast, mem, Engine};
 use automat_ir::code::{Addr, Base, Cmp, FloatOp, Inst, IntOp, MemTy, ShiftOp};
 use automat_ir::{Fault, FaultKind, Program, Site};
 
@@ -151,6 +151,7 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
         windows,
         stack,
         budget,
+        decoded,
         ..
     } = engine;
     let program: &Program = program;
@@ -163,6 +164,7 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
     let Some(mut code) = program.funcs.get(f as usize).map(|x| x.code.as_slice()) else {
         return Err(bad(f, format!("no function {f}")));
     };
+    let mut ops = decoded.get(f as usize).map(Vec::as_slice).unwrap_or(&[]);
     let mut ctx = Ctx {
         image,
         regs,
@@ -170,15 +172,21 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
     };
     loop {
         if left == 0 {
+            let site = program.funcs.get(f as usize).and_then(|x| x.stmt_site(pc));
             return Err(fault(
                 program,
                 f,
-                None,
+                site,
                 FaultKind::Watchdog,
                 format!("watchdog: more than {} instructions in one run", *budget),
             ));
         }
         left -= 1;
+        if let Some(&op) = ops.get(pc as usize) {
+            if fast::exec(op, ctx.regs, ctx.image, this, &mut pc, &mut left) {
+                continue;
+            }
+        }
         let Some(inst) = code.get(pc as usize) else {
             return Err(bad(f, format!("fell off the end of the code at {pc}")));
         };
@@ -355,17 +363,57 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                         automat_ir::code::CheckKind::Subrange => {
                             (FaultKind::SubrangeViolation, "value")
                         }
+                        automat_ir::code::CheckKind::Ref => {
+                            (FaultKind::Function, "dereferenced reference")
+                        }
                     };
                     return Err(fault(
                         program,
                         f,
                         Some(site),
                         k,
-                        format!("{what} {v} outside {lo}..{hi}"),
+                        if kind == automat_ir::code::CheckKind::Ref {
+                            "dereference of a NULL reference".to_string()
+                        } else {
+                            format!("{what} {v} outside {lo}..{hi}")
+                        },
                     ));
                 }
             }
             Inst::Now { dst } => ctx.set(dst, now as u64),
+            Inst::CheckDyn {
+                kind,
+                val,
+                lo,
+                hi,
+                site,
+            } => {
+                let (v, lo, hi) = (ctx.i(val), ctx.i(lo), ctx.i(hi));
+                if v < lo || v > hi {
+                    let (k, what) = match kind {
+                        automat_ir::code::CheckKind::Index => {
+                            (FaultKind::IndexOutOfBounds, "index")
+                        }
+                        automat_ir::code::CheckKind::Subrange => {
+                            (FaultKind::SubrangeViolation, "value")
+                        }
+                        automat_ir::code::CheckKind::Ref => {
+                            (FaultKind::Function, "dereferenced reference")
+                        }
+                    };
+                    return Err(fault(
+                        program,
+                        f,
+                        Some(site),
+                        k,
+                        if kind == automat_ir::code::CheckKind::Ref {
+                            "dereference of a NULL reference".to_string()
+                        } else {
+                            format!("{what} {v} outside {lo}..{hi}")
+                        },
+                    ));
+                }
+            }
             Inst::Builtin {
                 op,
                 dst,
@@ -403,6 +451,7 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                     Some(x) => &x.code,
                     None => return Err(bad(f, format!("no function {f}"))),
                 };
+                ops = decoded.get(f as usize).map(Vec::as_slice).unwrap_or(&[]);
                 ctx.base = windows.get(f as usize).copied().unwrap_or(0) as usize;
             }
             Inst::Ret => match stack.pop() {
@@ -416,6 +465,7 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                         .get(f as usize)
                         .map(|x| x.code.as_slice())
                         .unwrap_or(&[]);
+                    ops = decoded.get(f as usize).map(Vec::as_slice).unwrap_or(&[]);
                     ctx.base = windows.get(f as usize).copied().unwrap_or(0) as usize;
                 }
             },

@@ -13,6 +13,8 @@
 //! - Every loop is bounded by the watchdog budget (instructions per run).
 
 mod builtins;
+mod dates;
+mod fast;
 mod interp;
 pub mod mem;
 
@@ -28,6 +30,8 @@ pub struct Engine {
     regs: Vec<u64>,
     /// Start of each function's window in `regs`.
     windows: Vec<u32>,
+    /// Every function's code pre-decoded for the fast path (`fast.rs`).
+    decoded: Vec<Vec<fast::Op>>,
     /// Return frames; capacity fixed at creation.
     stack: Vec<interp::Frame>,
     budget: u64,
@@ -45,12 +49,19 @@ impl Engine {
             windows.push(total);
             total = total.saturating_add(f.regs.len() as u32);
         }
+        let decoded = program
+            .funcs
+            .iter()
+            .zip(&windows)
+            .map(|(f, &w)| fast::decode(f, w))
+            .collect();
         let mut image = program.initial_image.clone();
         image.resize(program.image_size as usize, 0);
         Engine {
             stack: Vec::with_capacity(program.funcs.len() + 1),
             regs: vec![0; total as usize],
             windows,
+            decoded,
             image,
             program,
             budget: DEFAULT_BUDGET,

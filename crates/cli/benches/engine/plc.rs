@@ -28,8 +28,14 @@ pub fn build(name: &str, src: &str) -> Result<Plc, String> {
     if analysis.has_errors() {
         return Err(format!("{name}: {}", describe(&analysis.diagnostics)));
     }
-    let program = lower(&units, &analysis, &interner, &sources, &LowerOptions::default())
-        .map_err(|d| format!("{name}: {}", describe(&d)))?;
+    let program = lower(
+        &units,
+        &analysis,
+        &interner,
+        &sources,
+        &LowerOptions::default(),
+    )
+    .map_err(|d| format!("{name}: {}", describe(&d)))?;
     let inst = program
         .tasks
         .first()
@@ -68,7 +74,10 @@ impl Plc {
             let (index, field) = inner
                 .split_once(']')
                 .ok_or_else(|| format!("unclosed index in {path}"))?;
-            let index: i64 = index.trim().parse().map_err(|_| format!("bad index in {path}"))?;
+            let index: i64 = index
+                .trim()
+                .parse()
+                .map_err(|_| format!("bad index in {path}"))?;
             let SymbolType::Array { elem, dims, stride } = ty else {
                 return Err(format!("{var} is not an array"));
             };
@@ -104,6 +113,10 @@ impl Plc {
 
     pub fn i32(&self, path: &str) -> Result<i64, String> {
         Ok(i32::from_le_bytes(self.bytes(path)?) as i64)
+    }
+
+    pub fn i64(&self, path: &str) -> Result<i64, String> {
+        Ok(i64::from_le_bytes(self.bytes(path)?))
     }
 
     pub fn u32(&self, path: &str) -> Result<u32, String> {

@@ -190,7 +190,11 @@ impl TypeSpec {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum ArrayDim {
-    Range { lo: Expr, hi: Expr, span: Span },
+    Range {
+        lo: Expr,
+        hi: Expr,
+        span: Span,
+    },
     /// `*`
     Star(Span),
 }

@@ -17,7 +17,10 @@ pub enum ExprKind {
     /// A direct address used as a value: `%IX0.1`.
     Address(DirectAddress),
     /// `base.member`
-    Member { base: Box<Expr>, member: Ident },
+    Member {
+        base: Box<Expr>,
+        member: Ident,
+    },
     /// `base.3` (size `None`) or `base.%X3` / `base.%B1` / `base.%W0` / `base.%D0`
     /// (partial access to a bit string).
     Partial {
@@ -27,17 +30,26 @@ pub enum ExprKind {
         index_span: Span,
     },
     /// `base[i, j]`
-    Index { base: Box<Expr>, indices: Vec<Expr> },
+    Index {
+        base: Box<Expr>,
+        indices: Vec<Expr>,
+    },
     /// `p^`
     Deref(Box<Expr>),
-    Unary { op: UnaryOp, operand: Box<Expr> },
+    Unary {
+        op: UnaryOp,
+        operand: Box<Expr>,
+    },
     Binary {
         op: BinaryOp,
         lhs: Box<Expr>,
         rhs: Box<Expr>,
     },
     /// `f(a, b)`, `fb(IN := x, Q => y)`, `inst.fb(...)`.
-    Call { callee: Box<Expr>, args: Vec<Arg> },
+    Call {
+        callee: Box<Expr>,
+        args: Vec<Arg>,
+    },
     Paren(Box<Expr>),
     /// Text that could not be parsed; a diagnostic was already reported.
     Error,
@@ -129,16 +141,31 @@ pub enum LitKind {
     Real(f64),
     Bool(bool),
     /// `T#..`/`TIME#..` (long = false) or `LT#..`/`LTIME#..` (long = true), in ns.
-    Duration { nanos: i128, long: bool },
+    Duration {
+        nanos: i128,
+        long: bool,
+    },
     /// `D#2024-01-31`: days since 1970-01-01.
-    Date { days: i64, long: bool },
+    Date {
+        days: i64,
+        long: bool,
+    },
     /// `TOD#12:30:00.5`: ns since midnight.
-    TimeOfDay { nanos: i64, long: bool },
+    TimeOfDay {
+        nanos: i64,
+        long: bool,
+    },
     /// `DT#2024-01-31-12:30:00`: ns since 1970-01-01T00:00:00.
-    DateTime { nanos: i128, long: bool },
+    DateTime {
+        nanos: i128,
+        long: bool,
+    },
     /// `'text'` (wide = false) or `"text"` (wide = true), escapes decoded.
     /// Each `$hh` of a STRING becomes the char U+00hh.
-    String { value: String, wide: bool },
+    String {
+        value: String,
+        wide: bool,
+    },
     /// `Color#Red`: the value name (the type is in [`Literal::ty`]).
     Enum(Ident),
 }

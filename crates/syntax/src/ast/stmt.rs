@@ -12,7 +12,10 @@ pub struct Stmt {
 #[derive(Clone, Debug, PartialEq)]
 pub enum StmtKind {
     /// `target := value;`
-    Assign { target: Expr, value: Expr },
+    Assign {
+        target: Expr,
+        value: Expr,
+    },
     /// An expression statement; valid only when it is a call (`fb(...)`, `f(x)`).
     Expr(Expr),
     Return,

@@ -1,0 +1,221 @@
+//! Engine speed benchmark (issue 3, point 7): compute-heavy ST programs run
+//! through lower + engine against the same algorithms in optimised Rust,
+//! measured in the same run; plus compile+load time of a program with 1,000
+//! FB instances and the scan overhead of an empty program.
+//!
+//! `cargo bench -p automat --bench engine` (add `-- --runs N` to change the
+//! number of timed runs; the best is reported). Prints a Markdown table.
+//! Bar: ST/native ≤ 10× must, ≤ 5× aim.
+
+#[path = "engine/cases.rs"]
+mod cases;
+#[path = "engine/plc.rs"]
+mod plc;
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+fn best_of<F: FnMut() -> Result<(), String>>(runs: usize, mut f: F) -> Result<Duration, String> {
+    let mut best = Duration::MAX;
+    for _ in 0..runs.max(1) {
+        let t = Instant::now();
+        f()?;
+        best = best.min(t.elapsed());
+    }
+    Ok(best)
+}
+
+fn fmt_time(d: Duration) -> String {
+    let s = d.as_secs_f64();
+    if s >= 1.0 {
+        format!("{s:.2} s")
+    } else if s >= 1e-3 {
+        format!("{:.2} ms", s * 1e3)
+    } else if s >= 1e-6 {
+        format!("{:.2} µs", s * 1e6)
+    } else {
+        format!("{:.1} ns", s * 1e9)
+    }
+}
+
+fn verdict(ratio: f64) -> &'static str {
+    if ratio <= 5.0 {
+        "meets aim (≤ 5×)"
+    } else if ratio <= 10.0 {
+        "meets bar (≤ 10×)"
+    } else {
+        "**misses bar (> 10×)**"
+    }
+}
+
+/// Runs one case: the ST program (cold start, `scans` scans) and the
+/// native version, best of `runs` each; checks the results agree.
+fn run_case(case: &cases::Case, runs: usize) -> Result<(Duration, Duration), String> {
+    let mut plc = plc::build(case.name, &case.src)?;
+    let st = best_of(runs, || {
+        plc.engine.cold_start();
+        for scan in 0..case.scans {
+            plc.scan(scan as i64 * 1_000_000)?;
+        }
+        Ok(())
+    })?;
+    let got = (case.read)(&plc)?;
+    let mut want = String::new();
+    let native = best_of(runs, || {
+        want = black_box((case.native)());
+        Ok(())
+    })?;
+    if got != want {
+        return Err(format!(
+            "{}: ST result {got:?} differs from native {want:?}",
+            case.name
+        ));
+    }
+    Ok((st, native))
+}
+
+/// A project with one FB type and a program holding `n` instances, each
+/// called once per scan.
+fn many_instances(n: usize) -> String {
+    let mut s = String::from(
+        "FUNCTION_BLOCK Stage
+VAR_INPUT enable : BOOL; step : DINT; END_VAR
+VAR_OUTPUT busy : BOOL; count : DINT; END_VAR
+VAR edge : R_TRIG; delay : TON; END_VAR
+edge(CLK := enable);
+delay(IN := enable, PT := T#10MS);
+IF edge.Q OR delay.Q THEN count := count + step; END_IF;
+busy := enable AND NOT delay.Q;
+END_FUNCTION_BLOCK
+
+PROGRAM Plant
+VAR
+",
+    );
+    for i in 0..n {
+        s.push_str(&format!("    st{i} : Stage;\n"));
+    }
+    s.push_str("    run : BOOL;\nEND_VAR\nrun := NOT run;\n");
+    for i in 0..n {
+        s.push_str(&format!("st{i}(enable := run, step := {});\n", i % 7 + 1));
+    }
+    s.push_str("END_PROGRAM\n");
+    s
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let runs = args
+        .iter()
+        .position(|a| a == "--runs")
+        .and_then(|i| args.get(i + 1))
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(5usize);
+    let mut failed = false;
+    // `--dump NAME`: print the lowered code of the case whose name starts
+    // with NAME instead of measuring (for profiling the interpreter).
+    if let Some(name) = args
+        .iter()
+        .position(|a| a == "--dump")
+        .and_then(|i| args.get(i + 1))
+    {
+        for case in cases::all()
+            .iter()
+            .filter(|c| c.name.starts_with(name.as_str()))
+        {
+            match plc::build(case.name, &case.src) {
+                Ok(p) => {
+                    for f in &p.engine.program().funcs {
+                        println!("{}:", f.name);
+                        for (pc, inst) in f.code.iter().enumerate() {
+                            println!("  {pc:4} {inst:?}");
+                        }
+                    }
+                }
+                Err(e) => println!("{e}"),
+            }
+        }
+        return;
+    }
+
+    println!("engine: ST through lower + interpreter vs the same algorithm in optimised Rust (best of {runs} runs, one core)\n");
+    println!("| case | ST | native | ST / native | verdict |");
+    println!("|---|---|---|---|---|");
+    for case in cases::all() {
+        match run_case(&case, runs) {
+            Ok((st, native)) => {
+                let ratio = st.as_secs_f64() / native.as_secs_f64().max(1e-9);
+                println!(
+                    "| {} | {} | {} | {:.1}× | {} |",
+                    case.name,
+                    fmt_time(st),
+                    fmt_time(native),
+                    ratio,
+                    verdict(ratio)
+                );
+            }
+            Err(e) => {
+                failed = true;
+                println!("| {} | error | | | {e} |", case.name);
+            }
+        }
+    }
+
+    println!("\n| measure | time | bar | verdict |");
+    println!("|---|---|---|---|");
+    let src = many_instances(1000);
+    let mut load = || -> Result<(), String> {
+        black_box(plc::build("plant", &src)?);
+        Ok(())
+    };
+    match best_of(runs, &mut load) {
+        Ok(d) => println!(
+            "| compile + load, 1,000 FB instances ({} lines) | {} | well under 1 s | {} |",
+            src.lines().count(),
+            fmt_time(d),
+            if d.as_secs_f64() < 0.5 {
+                "meets bar"
+            } else {
+                "**misses bar**"
+            }
+        ),
+        Err(e) => {
+            failed = true;
+            println!("| compile + load, 1,000 FB instances | error | | {e} |");
+        }
+    }
+    let scans = 1_000_000u32;
+    let empty = plc::build(
+        "empty",
+        "PROGRAM Empty\nVAR x : INT; END_VAR\nEND_PROGRAM\n",
+    )
+    .and_then(|mut p| {
+        best_of(runs, || {
+            for scan in 0..scans {
+                p.scan(black_box(scan as i64))?;
+            }
+            Ok(())
+        })
+    });
+    match empty {
+        Ok(d) => {
+            let per = d / scans;
+            println!(
+                "| empty-program scan overhead | {} per scan | < 1 µs | {} |",
+                fmt_time(per),
+                if per < Duration::from_micros(1) {
+                    "meets bar"
+                } else {
+                    "**misses bar**"
+                }
+            );
+        }
+        Err(e) => {
+            failed = true;
+            println!("| empty-program scan overhead | error | | {e} |");
+        }
+    }
+    if failed {
+        std::process::exit(1);
+    }
+}
