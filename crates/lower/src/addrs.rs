@@ -82,7 +82,7 @@ fn stmt(s: &Stmt, out: &mut Vec<DirectAddress>) {
 
 fn expr(e: &Expr, out: &mut Vec<DirectAddress>) {
     match &e.kind {
-        ExprKind::Address(a) => out.push(a.clone()),
+        ExprKind::Address(a) => out.push((**a).clone()),
         ExprKind::Member { base, .. }
         | ExprKind::Partial { base, .. }
         | ExprKind::Deref(base)

@@ -122,7 +122,7 @@ fn collect_stmts<'e>(stmts: &'e [Stmt], out: &mut Vec<&'e Expr>, depth: u32) {
             } => {
                 out.push(from);
                 out.push(to);
-                out.extend(by.iter());
+                out.extend(by.as_deref());
                 collect_stmts(body, out, depth + 1);
             }
             StmtKind::While { cond, body } => {

@@ -338,7 +338,7 @@ fn resolve_path(ck: &mut Checker, ci: usize, path: &Expr) -> Option<AccessPath> 
     };
     if let ExprKind::Address(a) = &path.kind {
         let e = crate::decl::location::size_elem(a.size);
-        return Some(mk(Vec::new(), TypeId::elem(e), Some(a.clone())));
+        return Some(mk(Vec::new(), TypeId::elem(e), Some((**a).clone())));
     }
     let mut segs = Vec::new();
     if !segments(path, &mut segs) {

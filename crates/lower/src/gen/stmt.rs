@@ -227,7 +227,7 @@ impl Gen<'_, '_> {
                 to,
                 by,
                 body,
-            } => self.for_loop(var, from, to, by.as_ref(), body, s),
+            } => self.for_loop(var, from, to, by.as_deref(), body, s),
             StmtKind::Exit => {
                 let j = self.jump_fwd();
                 match self.loops.last_mut() {

@@ -94,7 +94,7 @@ impl<'m> Checker<'m> {
                 to,
                 by,
                 body,
-            } => self.for_loop(*var, from, to, by.as_ref(), body),
+            } => self.for_loop(*var, from, to, by.as_deref(), body),
             StmtKind::While { cond, body } => {
                 self.condition(cond, "WHILE");
                 self.loop_body(body);

@@ -11,11 +11,13 @@ pub struct Expr {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum ExprKind {
-    Literal(Literal),
+    /// Boxed, like the address below, to keep `Expr` small: trees are
+    /// mostly names and operators, and a smaller node is a faster parse.
+    Literal(Box<Literal>),
     /// A variable, constant, enumeration value or POU name.
     Name(Ident),
     /// A direct address used as a value: `%IX0.1`.
-    Address(DirectAddress),
+    Address(Box<DirectAddress>),
     /// `base.member`
     Member {
         base: Box<Expr>,

@@ -29,11 +29,13 @@ pub enum StmtKind {
         arms: Vec<CaseArm>,
         else_body: Option<Vec<Stmt>>,
     },
+    /// The bounds are boxed so that this rare statement does not make
+    /// every `Stmt` large.
     For {
         var: Ident,
-        from: Expr,
-        to: Expr,
-        by: Option<Expr>,
+        from: Box<Expr>,
+        to: Box<Expr>,
+        by: Option<Box<Expr>>,
         body: Vec<Stmt>,
     },
     While {

@@ -233,9 +233,9 @@ impl Parser<'_> {
         if let Some(var) = var {
             let kind = StmtKind::For {
                 var,
-                from,
-                to,
-                by,
+                from: Box::new(from),
+                to: Box::new(to),
+                by: by.map(Box::new),
                 body,
             };
             self.push_stmt(out, kind, opener.start, end);

@@ -411,7 +411,7 @@ impl Parser<'_> {
             Tok::Lit(i) => {
                 self.bump();
                 match self.take_literal(i) {
-                    Some(lit) => ExprKind::Literal(lit),
+                    Some(lit) => ExprKind::Literal(Box::new(lit)),
                     None => ExprKind::Error,
                 }
             }
@@ -421,15 +421,15 @@ impl Parser<'_> {
             }
             Tok::Kw(k @ (Kw::True | Kw::False)) => {
                 self.bump();
-                ExprKind::Literal(Literal {
+                ExprKind::Literal(Box::new(Literal {
                     kind: LitKind::Bool(k == Kw::True),
                     ty: None,
-                })
+                }))
             }
             Tok::Addr => {
                 self.bump();
                 match decode_address(self.text(t), span) {
-                    Ok(addr) => ExprKind::Address(addr),
+                    Ok(addr) => ExprKind::Address(Box::new(addr)),
                     Err(msg) => {
                         self.report(Diagnostic::error(Code::E007, span, msg));
                         ExprKind::Error
