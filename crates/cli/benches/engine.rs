@@ -141,7 +141,15 @@ fn main() {
     println!("engine: ST through lower + interpreter vs the same algorithm in optimised Rust (best of {runs} runs, one core)\n");
     println!("| case | ST | native | ST / native | verdict |");
     println!("|---|---|---|---|---|");
+    // `--only NAME`: measure just the cases whose name starts with NAME.
+    let only = args
+        .iter()
+        .position(|a| a == "--only")
+        .and_then(|i| args.get(i + 1));
     for case in cases::all() {
+        if only.is_some_and(|o| !case.name.starts_with(o.as_str())) {
+            continue;
+        }
         match run_case(&case, runs) {
             Ok((st, native)) => {
                 let ratio = st.as_secs_f64() / native.as_secs_f64().max(1e-9);

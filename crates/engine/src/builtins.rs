@@ -21,7 +21,7 @@ fn iec(e: IecError) -> (FaultKind, String) {
 fn arg(args: &[Reg], i: usize) -> Result<Reg, (FaultKind, String)> {
     args.get(i)
         .copied()
-        .ok_or((FaultKind::Function, format!("builtin argument {i} missing")))
+        .ok_or_else(|| (FaultKind::Function, format!("builtin argument {i} missing")))
 }
 
 /// A register's bits as a value of type `e`.

@@ -90,7 +90,7 @@ fn wrap(v: i64, ty: MemTy) -> i64 {
     }
 }
 
-fn shift(op: ShiftOp, width: u8, v: i64, n: i64) -> i64 {
+pub(crate) fn shift(op: ShiftOp, width: u8, v: i64, n: i64) -> i64 {
     let w = width as u32;
     let mask: u64 = if w >= 64 { u64::MAX } else { (1u64 << w) - 1 };
     let x = v as u64 & mask;
@@ -164,7 +164,7 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
     let Some(mut code) = program.funcs.get(f as usize).map(|x| x.code.as_slice()) else {
         return Err(bad(f, format!("no function {f}")));
     };
-    let mut ops = decoded.get(f as usize).map(Vec::as_slice).unwrap_or(&[]);
+    let mut ops = fast::slices(decoded, f);
     let mut ctx = Ctx {
         image,
         regs,
@@ -182,8 +182,8 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
             ));
         }
         left -= 1;
-        if let Some(&op) = ops.get(pc as usize) {
-            if fast::exec(op, ctx.regs, ctx.image, this, &mut pc, &mut left) {
+        if let Some(&op) = ops.0.get(pc as usize) {
+            if fast::exec(op, ops.1, ctx.regs, ctx.image, this, &mut pc, &mut left) {
                 continue;
             }
         }
@@ -451,7 +451,7 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                     Some(x) => &x.code,
                     None => return Err(bad(f, format!("no function {f}"))),
                 };
-                ops = decoded.get(f as usize).map(Vec::as_slice).unwrap_or(&[]);
+                ops = fast::slices(decoded, f);
                 ctx.base = windows.get(f as usize).copied().unwrap_or(0) as usize;
             }
             Inst::Ret => match stack.pop() {
@@ -465,7 +465,7 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                         .get(f as usize)
                         .map(|x| x.code.as_slice())
                         .unwrap_or(&[]);
-                    ops = decoded.get(f as usize).map(Vec::as_slice).unwrap_or(&[]);
+                    ops = fast::slices(decoded, f);
                     ctx.base = windows.get(f as usize).copied().unwrap_or(0) as usize;
                 }
             },

@@ -14,7 +14,9 @@
 
 mod builtins;
 mod dates;
+mod exec;
 mod fast;
+mod fuse;
 mod interp;
 pub mod mem;
 
@@ -31,7 +33,7 @@ pub struct Engine {
     /// Start of each function's window in `regs`.
     windows: Vec<u32>,
     /// Every function's code pre-decoded for the fast path (`fast.rs`).
-    decoded: Vec<Vec<fast::Op>>,
+    decoded: Vec<fast::Code>,
     /// Return frames; capacity fixed at creation.
     stack: Vec<interp::Frame>,
     budget: u64,

@@ -23,10 +23,22 @@ pub fn load(image: &[u8], at: u32, ty: MemTy) -> Option<u64> {
 /// Writes the low `ty.size()` bytes of `v` at `at`.
 #[inline]
 pub fn store(image: &mut [u8], at: u32, ty: MemTy, v: u64) -> Option<()> {
-    let n = ty.size() as usize;
     let a = at as usize;
-    let dst = image.get_mut(a..a.checked_add(n)?)?;
-    dst.copy_from_slice(v.to_le_bytes().get(..n)?);
+    // One fixed-size write per width: a length known at compile time is a
+    // single move, where a slice copy of `ty.size()` bytes calls memcpy.
+    match ty.size() {
+        1 => *image.get_mut(a)? = v as u8,
+        2 => put(image, a, (v as u16).to_le_bytes())?,
+        4 => put(image, a, (v as u32).to_le_bytes())?,
+        _ => put(image, a, v.to_le_bytes())?,
+    }
+    Some(())
+}
+
+#[inline]
+fn put<const N: usize>(image: &mut [u8], a: usize, b: [u8; N]) -> Option<()> {
+    let dst: &mut [u8; N] = image.get_mut(a..a.checked_add(N)?)?.try_into().ok()?;
+    *dst = b;
     Some(())
 }
 
