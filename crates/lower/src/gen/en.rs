@@ -42,11 +42,18 @@ impl Gen<'_, '_> {
     ) -> Res<Val> {
         let Some(en) = c.en else {
             let (v, eno) = body(self)?;
-            let r = match eno {
-                Some(r) => r,
-                None => self.iconst(1),
+            // Nothing to bind: no ENO register is needed at all.
+            if hidden_eno.is_none() && c.eno.is_none() {
+                return Ok(v);
+            }
+            let (r, one) = match eno {
+                Some(r) => (r, None),
+                None => {
+                    let one = self.iconst(1);
+                    (one, Some(one))
+                }
             };
-            self.bind_eno(c, hidden_eno, r)?;
+            self.bind_eno(c, hidden_eno, r, one)?;
             return Ok(v);
         };
         let cond = self.cond_reg_of(en)?;
@@ -111,7 +118,7 @@ impl Gen<'_, '_> {
             *els = else_at;
         }
         self.patch(j, end);
-        self.bind_eno(c, hidden_eno, eno_r)?;
+        self.bind_eno(c, hidden_eno, eno_r, None)?;
         let nv = match v.v {
             V::I(_) => V::I(out),
             V::F(_) => V::F(out),
@@ -121,7 +128,8 @@ impl Gen<'_, '_> {
         Ok(Val { v: nv, ty: v.ty })
     }
 
-    fn bind_eno(&mut self, c: &EnEno, hidden: Option<Addr>, r: Reg) -> Res<()> {
+    /// `one`: a register already holding TRUE, for the hidden EN byte.
+    fn bind_eno(&mut self, c: &EnEno, hidden: Option<Addr>, r: Reg, one: Option<Reg>) -> Res<()> {
         if let Some(at) = hidden {
             self.emit(Inst::Store {
                 src: r,
@@ -130,7 +138,10 @@ impl Gen<'_, '_> {
             });
             let en = match c.en {
                 Some(_) => r,
-                None => self.iconst(1),
+                None => match one {
+                    Some(one) => one,
+                    None => self.iconst(1),
+                },
             };
             self.emit(Inst::Store {
                 src: en,

@@ -347,14 +347,19 @@ impl Gen<'_, '_> {
                     });
                     // (r - lo) * m: the -lo*m part is folded into the constant.
                     const_off -= lo * m;
-                    let mr = self.iconst(m);
-                    let t = self.reg(RegClass::I64);
-                    self.emit(Inst::Int {
-                        op: IntOp::Mul,
-                        dst: t,
-                        a: r,
-                        b: mr,
-                    });
+                    let t = if m == 1 {
+                        r
+                    } else {
+                        let mr = self.iconst(m);
+                        let t = self.reg(RegClass::I64);
+                        self.emit(Inst::Int {
+                            op: IntOp::Mul,
+                            dst: t,
+                            a: r,
+                            b: mr,
+                        });
+                        t
+                    };
                     acc = Some(match acc {
                         None => t,
                         Some(a) => {
@@ -373,24 +378,15 @@ impl Gen<'_, '_> {
         }
         let addr = match acc {
             None => add(b.addr, const_off as u32),
+            // The constant part goes into the operand's offset: the engine
+            // adds it modulo 2^32, so a negative part works too.
             Some(a) => {
-                let base = self.addr_reg(b.addr);
-                let c = self.iconst(const_off);
-                let s = self.reg(RegClass::I64);
-                self.emit(Inst::Int {
-                    op: IntOp::Add,
-                    dst: s,
-                    a,
-                    b: c,
-                });
-                let t = self.reg(RegClass::I64);
-                self.emit(Inst::Int {
-                    op: IntOp::Add,
-                    dst: t,
-                    a: base,
-                    b: s,
-                });
-                Addr::reg(t, 0)
+                let (base, off0) = match b.addr.base {
+                    automat_ir::code::Base::Reg(r) => (r, b.addr.offset),
+                    _ => (self.addr_reg(b.addr), 0),
+                };
+                let t = self.int_op(IntOp::Add, base, a);
+                Addr::reg(t, off0.wrapping_add(const_off as u32))
             }
         };
         Ok(Lv {

@@ -55,7 +55,27 @@ impl Gen<'_, '_> {
             src: lim,
         });
         self.emit(Inst::Mov { dst: st2, src: st });
-        let zero = self.iconst(0);
+        // The constants of the test and the increment's range check are
+        // loaded once, before the loop.
+        let zero = if step_const.is_none() {
+            self.iconst(0)
+        } else {
+            lim2
+        };
+        let (lo, hi) = el
+            .int_range()
+            .unwrap_or((i64::MIN as i128, i64::MAX as i128));
+        let (lo, hi) = (
+            lo.max(i64::MIN as i128) as i64,
+            hi.min(i64::MAX as i128) as i64,
+        );
+        // With a constant step only one side of the range can be crossed.
+        let bounds = match step_const {
+            _ if lo == i64::MIN && hi == i64::MAX => None,
+            Some(k) if k >= 0 => Some((None, Some(self.iconst(hi)))),
+            Some(_) => Some((Some(self.iconst(lo)), None)),
+            None => Some((Some(self.iconst(lo)), Some(self.iconst(hi)))),
+        };
         // test: (step >= 0 AND v <= lim) OR (step < 0 AND v >= lim)
         let top = self.here();
         let cur = match self.load(lv).v {
@@ -157,40 +177,24 @@ impl Gen<'_, '_> {
             a: cur,
             b: st2,
         });
-        let (lo, hi) = el
-            .int_range()
-            .unwrap_or((i64::MIN as i128, i64::MAX as i128));
-        let (lo, hi) = (
-            lo.max(i64::MIN as i128) as i64,
-            hi.min(i64::MAX as i128) as i64,
-        );
-        if lo > i64::MIN || hi < i64::MAX {
-            let (l, h) = (self.iconst(lo), self.iconst(hi));
-            let (c1, c2, c) = (
-                self.reg(RegClass::I64),
-                self.reg(RegClass::I64),
-                self.reg(RegClass::I64),
-            );
-            self.emit(Inst::ICmp {
-                cmp: Cmp::Ge,
-                signed: true,
-                dst: c1,
-                a: next,
-                b: l,
-            });
-            self.emit(Inst::ICmp {
-                cmp: Cmp::Le,
-                signed: true,
-                dst: c2,
-                a: next,
-                b: h,
-            });
-            self.emit(Inst::Int {
-                op: IntOp::And,
-                dst: c,
-                a: c1,
-                b: c2,
-            });
+        if let Some((l, h)) = bounds {
+            let c = match (l, h) {
+                (Some(l), Some(h)) => {
+                    let c1 = self.cmp_reg(Cmp::Ge, next, l);
+                    let c2 = self.cmp_reg(Cmp::Le, next, h);
+                    let c = self.reg(RegClass::I64);
+                    self.emit(Inst::Int {
+                        op: IntOp::And,
+                        dst: c,
+                        a: c1,
+                        b: c2,
+                    });
+                    c
+                }
+                (Some(l), None) => self.cmp_reg(Cmp::Ge, next, l),
+                (None, Some(h)) => self.cmp_reg(Cmp::Le, next, h),
+                (None, None) => return Err(crate::gen::Failed),
+            };
             let br2 = self.emit(Inst::Branch {
                 cond: c,
                 then: u32::MAX,
@@ -226,5 +230,20 @@ impl Gen<'_, '_> {
             self.close_loop(inc, end);
         }
         Ok(())
+    }
+}
+
+impl Gen<'_, '_> {
+    /// `a cmp b`, signed, into a new register.
+    fn cmp_reg(&mut self, cmp: Cmp, a: u32, b: u32) -> u32 {
+        let d = self.reg(RegClass::I64);
+        self.emit(Inst::ICmp {
+            cmp,
+            signed: true,
+            dst: d,
+            a,
+            b,
+        });
+        d
     }
 }

@@ -10,6 +10,7 @@ mod en;
 mod expr;
 mod forloop;
 mod ops;
+mod peep;
 mod refs;
 mod stdfn;
 mod stdmore;
@@ -84,6 +85,10 @@ pub struct Gen<'c, 'a> {
     /// one, so a POU needs only as many as its busiest statement.
     temps: Vec<(u32, u32)>,
     temps_used: usize,
+    /// The last instruction index handed out by [`Gen::here`]: a possible
+    /// jump target, where a value from the previous instruction cannot be
+    /// reused.
+    label: std::cell::Cell<u32>,
 }
 
 struct LoopCx {
@@ -103,6 +108,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             star: rustc_hash::FxHashMap::default(),
             temps: Vec::new(),
             temps_used: 0,
+            label: std::cell::Cell::new(u32::MAX),
         }
     }
 
@@ -134,7 +140,33 @@ impl<'c, 'a> Gen<'c, 'a> {
     }
 
     pub fn here(&self) -> u32 {
-        self.f.code.len() as u32
+        let at = self.f.code.len() as u32;
+        self.label.set(at);
+        at
+    }
+
+    /// The register just stored to `addr` as `ty`, when the previous
+    /// instruction is that store and nothing can jump in between: reading
+    /// the variable back would load the same (canonical) value.
+    fn just_stored(&self, addr: Addr, ty: MemTy) -> Option<Reg> {
+        let at = self.f.code.len() as u32;
+        if self.label.get() == at {
+            return None;
+        }
+        match self.f.code.last() {
+            Some(Inst::Store {
+                src,
+                ty: t,
+                addr: a,
+            }) if *t == ty && *a == addr => Some(*src),
+            // Reading the same location twice in a row (`i * i`).
+            Some(Inst::Load {
+                dst,
+                ty: t,
+                addr: a,
+            }) if *t == ty && *a == addr => Some(*dst),
+            _ => None,
+        }
     }
 
     /// A forward jump whose target is patched later.
@@ -287,18 +319,28 @@ impl<'c, 'a> Gen<'c, 'a> {
         let v = match self.shape(lv.ty) {
             Shape::Int(e) => {
                 let mt = mem_ty(e);
-                let r = self.reg(mt.class());
-                match lv.bit {
-                    Some(bit) => self.emit(Inst::LoadBit {
-                        dst: r,
-                        addr: lv.addr,
-                        bit,
-                    }),
-                    None => self.emit(Inst::Load {
-                        dst: r,
-                        ty: mt,
-                        addr: lv.addr,
-                    }),
+                let known = match lv.bit {
+                    None => self.just_stored(lv.addr, mt),
+                    Some(_) => None,
+                };
+                let r = match known {
+                    Some(r) => r,
+                    None => self.reg(mt.class()),
+                };
+                match (known, lv.bit) {
+                    (Some(_), _) => 0,
+                    (None, bit) => match bit {
+                        Some(bit) => self.emit(Inst::LoadBit {
+                            dst: r,
+                            addr: lv.addr,
+                            bit,
+                        }),
+                        None => self.emit(Inst::Load {
+                            dst: r,
+                            ty: mt,
+                            addr: lv.addr,
+                        }),
+                    },
                 };
                 match mt.class() {
                     RegClass::I64 => V::I(r),

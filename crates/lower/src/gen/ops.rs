@@ -12,6 +12,20 @@ use automat_sema::types::{Elem, TypeId};
 use automat_sema::Typed;
 use automat_syntax::ast::{BinaryOp, Expr, UnaryOp};
 
+/// The values a canonical register of an integer memory type holds.
+fn mem_range(t: MemTy) -> Option<(i128, i128)> {
+    Some(match t {
+        MemTy::I8 => (i8::MIN as i128, i8::MAX as i128),
+        MemTy::U8 => (0, u8::MAX as i128),
+        MemTy::I16 => (i16::MIN as i128, i16::MAX as i128),
+        MemTy::U16 => (0, u16::MAX as i128),
+        MemTy::I32 => (i32::MIN as i128, i32::MAX as i128),
+        MemTy::U32 => (0, u32::MAX as i128),
+        MemTy::I64 => (i64::MIN as i128, i64::MAX as i128),
+        MemTy::F32 | MemTy::F64 => return None,
+    })
+}
+
 /// Integer-like: lives in I64 and wraps by its memory type.
 fn intlike(e: Elem) -> bool {
     e.is_int() || e.is_bit() || e.is_char()
@@ -31,6 +45,13 @@ impl Gen<'_, '_> {
                 }
                 let (ma, mb) = (mem_ty(a), mem_ty(b));
                 if intlike(a) && intlike(b) {
+                    // A canonical value of a narrower range is already
+                    // canonical at the wider one: the wrap would do nothing.
+                    if mem_range(ma).is_some_and(|(lo, hi)| {
+                        mem_range(mb).is_some_and(|(l2, h2)| l2 <= lo && hi <= h2)
+                    }) {
+                        return Ok(Val { v: v.v, ty: to });
+                    }
                     let d = self.reg(RegClass::I64);
                     self.emit(Inst::Wrap {
                         dst: d,
@@ -297,7 +318,15 @@ impl Gen<'_, '_> {
                         ))
                     }
                 }
-                self.wrap(d, el)
+                // Bitwise results of canonical operands are canonical
+                // (zero- or sign-extension survives AND/OR/XOR), and a
+                // remainder is smaller than its divisor: no wrap needed.
+                // Only a signed division can overflow (MIN / -1).
+                match op {
+                    And | Or | Xor | Mod => V::I(d),
+                    Div if !signed => V::I(d),
+                    _ => self.wrap(d, el),
+                }
             }
             (V::F(x), V::F(y)) | (V::D(x), V::D(y)) => {
                 let wide = matches!(a.v, V::D(_));

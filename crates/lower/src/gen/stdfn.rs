@@ -226,10 +226,14 @@ impl Gen<'_, '_> {
                     a: r,
                     n,
                 });
-                Ok(Val {
-                    v: self.wrap(d, el),
-                    ty,
-                })
+                // The result is masked to `width` bits: already canonical
+                // for an unsigned type of that width.
+                let v = if el.is_signed() {
+                    self.wrap(d, el)
+                } else {
+                    V::I(d)
+                };
+                Ok(Val { v, ty })
             }
             Sel => {
                 let ty = rty.ok_or(Failed)?;

@@ -30,6 +30,7 @@ pub fn pou(cx: &mut Cx, id: PouId) -> Func {
         g.patch(j, end);
     }
     g.emit(Inst::Ret);
+    super::peep::tidy(&mut g.f);
     g.f
 }
 
@@ -141,7 +142,8 @@ impl Gen<'_, '_> {
     fn stmt(&mut self, s: &Stmt) -> Res<()> {
         // No value of an earlier statement is still needed.
         self.free_temps();
-        let at = self.here();
+        // Not `here()`: a statement start is no jump target by itself.
+        let at = self.f.code.len() as u32;
         let site = self.site(s.span);
         self.f.stmt_sites.push((at, site));
         match &s.kind {
