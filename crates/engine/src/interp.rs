@@ -3,7 +3,7 @@
 //! `Engine::new`, so the window arithmetic stays inside the register file.
 
 use crate::{builtins, fast, mem, Engine};
-use automat_ir::code::{Addr, Base, Cmp, FloatOp, Inst, IntOp, MemTy, ShiftOp};
+use automat_ir::code::{Addr, Base, CheckKind, Cmp, FloatOp, Inst, IntOp, MemTy, ShiftOp};
 use automat_ir::{Fault, FaultKind, Program, Site};
 
 #[derive(Clone, Copy, Debug)]
@@ -67,6 +67,37 @@ pub fn fault(
         message,
         site,
     }
+}
+
+/// The fault of a failed range check (`Check` with constant bounds and
+/// `CheckDyn` with bounds in registers share it): index, subrange, NULL.
+fn check_range(
+    program: &Program,
+    func: u32,
+    kind: CheckKind,
+    v: i64,
+    lo: i64,
+    hi: i64,
+    site: u32,
+) -> Result<(), Fault> {
+    if (lo..=hi).contains(&v) {
+        return Ok(());
+    }
+    let (k, message) = match kind {
+        CheckKind::Index => (
+            FaultKind::IndexOutOfBounds,
+            format!("index {v} outside {lo}..{hi}"),
+        ),
+        CheckKind::Subrange => (
+            FaultKind::SubrangeViolation,
+            format!("value {v} outside {lo}..{hi}"),
+        ),
+        CheckKind::Ref => (
+            FaultKind::Function,
+            "dereference of a NULL reference".to_string(),
+        ),
+    };
+    Err(fault(program, func, Some(site), k, message))
 }
 
 #[inline]
@@ -353,33 +384,7 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                 lo,
                 hi,
                 site,
-            } => {
-                let v = ctx.i(val);
-                if v < lo || v > hi {
-                    let (k, what) = match kind {
-                        automat_ir::code::CheckKind::Index => {
-                            (FaultKind::IndexOutOfBounds, "index")
-                        }
-                        automat_ir::code::CheckKind::Subrange => {
-                            (FaultKind::SubrangeViolation, "value")
-                        }
-                        automat_ir::code::CheckKind::Ref => {
-                            (FaultKind::Function, "dereferenced reference")
-                        }
-                    };
-                    return Err(fault(
-                        program,
-                        f,
-                        Some(site),
-                        k,
-                        if kind == automat_ir::code::CheckKind::Ref {
-                            "dereference of a NULL reference".to_string()
-                        } else {
-                            format!("{what} {v} outside {lo}..{hi}")
-                        },
-                    ));
-                }
-            }
+            } => check_range(program, f, kind, ctx.i(val), lo, hi, site)?,
             Inst::Now { dst } => ctx.set(dst, now as u64),
             Inst::CheckDyn {
                 kind,
@@ -387,33 +392,7 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                 lo,
                 hi,
                 site,
-            } => {
-                let (v, lo, hi) = (ctx.i(val), ctx.i(lo), ctx.i(hi));
-                if v < lo || v > hi {
-                    let (k, what) = match kind {
-                        automat_ir::code::CheckKind::Index => {
-                            (FaultKind::IndexOutOfBounds, "index")
-                        }
-                        automat_ir::code::CheckKind::Subrange => {
-                            (FaultKind::SubrangeViolation, "value")
-                        }
-                        automat_ir::code::CheckKind::Ref => {
-                            (FaultKind::Function, "dereferenced reference")
-                        }
-                    };
-                    return Err(fault(
-                        program,
-                        f,
-                        Some(site),
-                        k,
-                        if kind == automat_ir::code::CheckKind::Ref {
-                            "dereference of a NULL reference".to_string()
-                        } else {
-                            format!("{what} {v} outside {lo}..{hi}")
-                        },
-                    ));
-                }
-            }
+            } => check_range(program, f, kind, ctx.i(val), ctx.i(lo), ctx.i(hi), site)?,
             Inst::Builtin {
                 op,
                 dst,
