@@ -83,7 +83,7 @@ fn missing_path_and_bad_flags_exit_2() {
 #[test]
 fn help_documents_every_command_and_flag() {
     let top = String::from_utf8_lossy(&automat(&["--help"]).stdout).to_string();
-    for cmd in ["check", "explain"] {
+    for cmd in ["check", "run", "explain"] {
         assert!(top.contains(cmd), "{top}");
     }
     let check = String::from_utf8_lossy(&automat(&["check", "--help"]).stdout).to_string();

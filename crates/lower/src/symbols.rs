@@ -8,11 +8,39 @@ use automat_ir::{Field, SymbolType};
 use automat_sema::model::Section;
 use automat_sema::types::{Elem, TypeId, TypeKind};
 
+/// The IEC value type of a checker elementary type. An exhaustive match, so
+/// a type added to either enum is a compile error here rather than a silent
+/// mismatch. (The checker's `Elem` and `automat_iec::Elementary` should
+/// become one type; until then this is the only bridge.)
 pub fn elementary(e: Elem) -> Elementary {
-    Elementary::ALL
-        .get(e as usize)
-        .copied()
-        .unwrap_or(Elementary::Bool)
+    use Elementary as E;
+    match e {
+        Elem::Bool => E::Bool,
+        Elem::Sint => E::Sint,
+        Elem::Int => E::Int,
+        Elem::Dint => E::Dint,
+        Elem::Lint => E::Lint,
+        Elem::Usint => E::Usint,
+        Elem::Uint => E::Uint,
+        Elem::Udint => E::Udint,
+        Elem::Ulint => E::Ulint,
+        Elem::Real => E::Real,
+        Elem::Lreal => E::Lreal,
+        Elem::Byte => E::Byte,
+        Elem::Word => E::Word,
+        Elem::Dword => E::Dword,
+        Elem::Lword => E::Lword,
+        Elem::Time => E::Time,
+        Elem::Ltime => E::Ltime,
+        Elem::Date => E::Date,
+        Elem::Ldate => E::Ldate,
+        Elem::Tod => E::Tod,
+        Elem::Ltod => E::Ltod,
+        Elem::Dt => E::Dt,
+        Elem::Ldt => E::Ldt,
+        Elem::Char => E::Char,
+        Elem::Wchar => E::Wchar,
+    }
 }
 
 /// The layout-level type of a sema type.
@@ -100,5 +128,21 @@ pub fn symbol_type(layout: &mut Layout, interner: &Interner, ty: TypeId, depth: 
             }
         }
         TypeKind::Ref(t) => SymbolType::Ref(Box::new(symbol_type(layout, interner, t, depth + 1))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_checker_type_maps_to_the_iec_type_of_the_same_name_and_width() {
+        for e in Elem::ALL {
+            let iec = elementary(e);
+            assert_eq!(iec.name(), e.name(), "{e:?}");
+            assert_eq!(iec.bit_width(), Some(e.bits()), "{e:?}");
+            assert_eq!(iec.is_int(), e.is_int(), "{e:?}");
+            assert_eq!(iec.is_real(), e.is_real(), "{e:?}");
+        }
     }
 }
