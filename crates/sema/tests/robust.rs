@@ -37,6 +37,7 @@ fn program(i: &mut Interner, body: Vec<Stmt>, decls: Vec<VarDecl>) -> SourceUnit
                 span: sp(),
             }],
             body: Body::St(body),
+            lang: Lang::St,
             span: sp(),
         })],
     }

@@ -18,14 +18,29 @@ pub struct Pou {
     /// `FUNCTION f : INT` (functions only; `None` for a function without one).
     pub return_type: Option<TypeSpec>,
     pub var_blocks: Vec<VarBlock>,
+    /// The code every later stage checks and lowers: always Structured Text
+    /// (IL and SFC bodies are desugared into it by the parser, see `lang`).
     pub body: Body,
+    /// The language the body was written in, with its own tree when that is
+    /// not ST: tools that show the source's view (SFC animation, IL
+    /// monitoring, graphical editors) read it; checking and lowering do not.
+    pub lang: Lang,
     pub span: Span,
 }
 
-/// The code of a POU. Other languages (IL, SFC) add variants.
+/// The checked and lowered code of a POU.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Body {
     St(Vec<Stmt>),
+}
+
+/// The language of a POU body as written.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub enum Lang {
+    #[default]
+    St,
+    Il(Box<super::il::IlBody>),
+    Sfc(Box<super::sfc::Chart>),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

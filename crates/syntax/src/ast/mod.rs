@@ -6,13 +6,17 @@
 //! - Names are [`Ident`]s: an interned, case-folded [`Symbol`] plus the span of
 //!   the spelling. Elementary type names (`INT`, `TIME`, ...) are plain `Ident`s
 //!   resolved by `sema`; only `STRING`/`WSTRING` have syntax of their own.
-//! - The tree is what was written: no desugaring, no implicit conversions, no
-//!   constant folding. After a syntax error the parser still returns a tree,
+//! - The tree is what was written: no implicit conversions, no constant
+//!   folding. The one desugaring: IL and SFC bodies are parsed into their own
+//!   trees (`il`, `sfc`, kept in `Pou::lang`) and rewritten into ST statements
+//!   (`Pou::body`) whose spans point at the IL/SFC text they came from. After a syntax error the parser still returns a tree,
 //!   with [`ExprKind::Error`] or missing pieces where text could not be parsed.
 //! - Statements and expressions are different types.
 
 mod decl;
 mod expr;
+pub mod il;
+pub mod sfc;
 mod stmt;
 
 pub use decl::*;

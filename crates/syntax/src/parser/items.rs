@@ -3,7 +3,7 @@
 
 use super::expr::is_identish;
 use super::Parser;
-use crate::ast::{Body, Item, Pou, PouKind, TypeBlock, TypeDecl, TypeSpec};
+use crate::ast::{Body, Item, Lang, Pou, PouKind, TypeBlock, TypeDecl, TypeSpec};
 use crate::lexer::{Kw, Tok};
 
 const END_PROGRAM: &[Kw] = &[Kw::EndProgram];
@@ -113,6 +113,7 @@ impl Parser<'_> {
             return_type,
             var_blocks,
             body: Body::St(body),
+            lang: Lang::St,
             span: self.span_from(opener.start),
         })
     }
