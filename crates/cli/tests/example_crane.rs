@@ -31,17 +31,17 @@ fn crane_runs_cycle_one_waits_then_returns() {
     let at = |t: &str| run_crane(t, &["Ctrl.step", "Sim.cycles"]);
     assert_eq!(
         at("400ms"),
-        ["Ctrl.step = CRANESTEP#REST1", "Sim.cycles = 0"]
+        ["Ctrl.step = CraneStep#Rest1", "Sim.cycles = 0"]
     );
-    assert_eq!(at("1s"), ["Ctrl.step = CRANESTEP#UP1", "Sim.cycles = 0"]);
-    assert_eq!(at("8s"), ["Ctrl.step = CRANESTEP#RIGHT", "Sim.cycles = 0"]);
-    assert_eq!(at("13s"), ["Ctrl.step = CRANESTEP#DOWN1", "Sim.cycles = 0"]);
-    assert_eq!(at("17s"), ["Ctrl.step = CRANESTEP#WAIT", "Sim.cycles = 0"]);
-    assert_eq!(at("20s"), ["Ctrl.step = CRANESTEP#UP2", "Sim.cycles = 0"]);
-    assert_eq!(at("26s"), ["Ctrl.step = CRANESTEP#LEFT", "Sim.cycles = 0"]);
-    assert_eq!(at("31s"), ["Ctrl.step = CRANESTEP#DOWN2", "Sim.cycles = 0"]);
+    assert_eq!(at("1s"), ["Ctrl.step = CraneStep#Up1", "Sim.cycles = 0"]);
+    assert_eq!(at("8s"), ["Ctrl.step = CraneStep#Right", "Sim.cycles = 0"]);
+    assert_eq!(at("13s"), ["Ctrl.step = CraneStep#Down1", "Sim.cycles = 0"]);
+    assert_eq!(at("17s"), ["Ctrl.step = CraneStep#Wait", "Sim.cycles = 0"]);
+    assert_eq!(at("20s"), ["Ctrl.step = CraneStep#Up2", "Sim.cycles = 0"]);
+    assert_eq!(at("26s"), ["Ctrl.step = CraneStep#Left", "Sim.cycles = 0"]);
+    assert_eq!(at("31s"), ["Ctrl.step = CraneStep#Down2", "Sim.cycles = 0"]);
     // No new cycle without a new press.
-    assert_eq!(at("60s"), ["Ctrl.step = CRANESTEP#REST1", "Sim.cycles = 1"]);
+    assert_eq!(at("60s"), ["Ctrl.step = CraneStep#Rest1", "Sim.cycles = 1"]);
 }
 
 #[test]

@@ -466,7 +466,7 @@ fn event_tasks_run_on_rising_edges_and_nested_paths_print() {
     // trig is TRUE after the scans k = 2, 3, 6, 7: rising edges seen at 20 and 60 ms.
     assert_eq!(
         out,
-        "events = 2\npc.k = 8\npc.o.inner.total = 24\nPC.C = COLOR#GREEN\n"
+        "events = 2\npc.k = 8\npc.o.inner.total = 24\nPC.C = Color#GREEN\n"
     );
 }
 

@@ -67,6 +67,9 @@ pub struct Layout<'m> {
     sizes: FxHashMap<TypeId, (u32, u32)>,
     fields: FxHashMap<TypeId, Vec<u32>>,
     pous: FxHashMap<PouId, PouLayout>,
+    /// Declared spellings of enumeration types and values, for the symbol
+    /// table (see `symbols::spellings`).
+    pub spellings: FxHashMap<automat_base::Symbol, String>,
 }
 
 pub fn align_up(x: u32, a: u32) -> u32 {
@@ -115,6 +118,7 @@ impl<'m> Layout<'m> {
             sizes: FxHashMap::default(),
             fields: FxHashMap::default(),
             pous: FxHashMap::default(),
+            spellings: FxHashMap::default(),
         }
     }
 

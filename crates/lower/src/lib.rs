@@ -69,6 +69,7 @@ pub fn lower(
         sites: Vec::new(),
         diags: Vec::new(),
     };
+    cx.layout.spellings = symbols::spellings(units, sources);
     let areas_end = cx.layout.size_areas(&addrs::in_bodies(units));
     cx.top = areas_end;
     let mut entries = Vec::new();

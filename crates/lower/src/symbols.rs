@@ -2,7 +2,9 @@
 //! their layout-level types.
 
 use crate::layout::Layout;
-use automat_base::Interner;
+use automat_base::{Interner, SourceMap, Symbol};
+use automat_syntax::ast::{Item, SourceUnit, TypeSpec};
+use rustc_hash::FxHashMap;
 use automat_iec::Elementary;
 use automat_ir::{Field, SymbolType};
 use automat_sema::model::Section;
@@ -41,6 +43,39 @@ pub fn elementary(e: Elem) -> Elementary {
         Elem::Char => E::Char,
         Elem::Wchar => E::Wchar,
     }
+}
+
+/// How enumeration types and values were declared (`CraneStep`, `Rest1`),
+/// so that values print as the user wrote them (`CraneStep#Rest1`) whatever
+/// spelling the interner saw first; the first declaration wins.
+pub fn spellings(units: &[SourceUnit], sources: &SourceMap) -> FxHashMap<Symbol, String> {
+    let mut out = FxHashMap::default();
+    for u in units {
+        for item in &u.items {
+            let Item::Types(block) = item else { continue };
+            for d in &block.decls {
+                let TypeSpec::Enum { values, .. } = &d.spec else {
+                    continue;
+                };
+                out.entry(d.name.sym)
+                    .or_insert_with(|| sources.text(d.name.span).to_string());
+                for v in values {
+                    out.entry(v.name.sym)
+                        .or_insert_with(|| sources.text(v.name.span).to_string());
+                }
+            }
+        }
+    }
+    out.retain(|_, s: &mut String| !s.is_empty());
+    out
+}
+
+fn spelled(layout: &Layout, interner: &Interner, sym: Symbol) -> String {
+    layout
+        .spellings
+        .get(&sym)
+        .cloned()
+        .unwrap_or_else(|| interner.name(sym).to_string())
 }
 
 /// The layout-level type of a sema type.
@@ -83,11 +118,11 @@ pub fn symbol_type(layout: &mut Layout, interner: &Interner, ty: TypeId, depth: 
             }
         }
         TypeKind::Enum { name, base, values } => SymbolType::Enum {
-            name: name.map_or_else(String::new, |n| interner.name(n).to_ascii_uppercase()),
+            name: name.map_or_else(String::new, |n| spelled(layout, interner, n)),
             base: elementary(base),
             values: values
                 .iter()
-                .map(|v| (interner.name(v.name).to_ascii_uppercase(), v.value as i64))
+                .map(|v| (spelled(layout, interner, v.name), v.value as i64))
                 .collect(),
         },
         TypeKind::Subrange { base, lo, hi } => SymbolType::Subrange {

@@ -82,6 +82,8 @@ enum Shape {
     Enum(TypeId),
     Int(i128),
     Real(f64),
+    /// A reference, by the type it designates.
+    Ref(TypeId),
     Other,
 }
 
@@ -94,12 +96,13 @@ fn shape(types: &TypeTable, t: &Typed) -> Shape {
             _ => 0.0,
         }),
         Ty::AnyStr { wide } => Shape::Str(wide),
-        Ty::RefOf(_) => Shape::Other,
+        Ty::RefOf(t) => Shape::Ref(t),
         Ty::Of(id) => match types.get(id) {
             TypeKind::Error => Shape::Error,
             TypeKind::Elem(e) | TypeKind::Subrange { base: e, .. } => Shape::Elem(*e),
             TypeKind::String { wide, .. } => Shape::Str(*wide),
             TypeKind::Enum { .. } => Shape::Enum(id),
+            TypeKind::Ref(t) => Shape::Ref(*t),
             _ => Shape::Other,
         },
     }
@@ -141,6 +144,11 @@ pub fn binary(types: &TypeTable, op: BinaryOp, l: &Typed, r: &Typed) -> Option<T
     let (ls, rs) = (shape(types, l), shape(types, r));
     match (ls, rs) {
         (Shape::Error, _) | (_, Shape::Error) => Some(Ty::Error),
+        // References are equal when they designate the same variable (or
+        // are both NULL); they have no order.
+        (Shape::Ref(a), Shape::Ref(b)) => {
+            (a == b && matches!(op, Eq | Ne)).then_some(Ty::elem(Elem::Bool))
+        }
         _ if is_compare(op) => compare(ls, rs).then_some(Ty::elem(Elem::Bool)),
         (Shape::Int(_), Shape::Int(_)) => match op {
             Pow => Some(Ty::AnyReal),

@@ -53,6 +53,9 @@ impl Gen<'_, '_> {
 
     /// Lowers an expression, converted to `want` when given.
     pub fn expr(&mut self, e: &Expr, want: Option<TypeId>) -> Res<Val> {
+        if let Some(v) = self.null_ref(e, want) {
+            return Ok(v);
+        }
         let typed = self.typed(e);
         let is_call = matches!(e.kind, ExprKind::Call { .. });
         if let (Some(v), false) = (&typed.value, is_call) {

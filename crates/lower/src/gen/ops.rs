@@ -210,6 +210,10 @@ impl Gen<'_, '_> {
                 (Some(p), Some(q)) => automat_sema::lattice::lub(p, q).map(TypeId::elem),
                 _ => Some(x),
             },
+            // In a checked program only NULL has no type of its own: it
+            // takes the other operand's reference type.
+            (Ty::Of(x), Ty::Error) => Some(x),
+            (Ty::Error, Ty::Of(y)) => Some(y),
             (Ty::Of(x), _) => self.concrete(b.ty, Some(x), b.value.as_ref()),
             (_, Ty::Of(y)) => self.concrete(a.ty, Some(y), a.value.as_ref()),
             (Ty::AnyReal, _) | (_, Ty::AnyReal) => Some(TypeId::elem(Elem::Lreal)),

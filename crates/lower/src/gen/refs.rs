@@ -40,6 +40,28 @@ impl Gen<'_, '_> {
         })
     }
 
+    /// `NULL` (when no variable hides the name): offset 0, which no
+    /// variable has (the image starts with reserved bytes), typed as the
+    /// reference the context wants. The checker already rejected NULL
+    /// where no reference type is wanted.
+    pub fn null_ref(&mut self, e: &Expr, want: Option<TypeId>) -> Option<Val> {
+        let ExprKind::Name(id) = &e.kind else {
+            return None;
+        };
+        if !self.cx.interner.name(id.sym).eq_ignore_ascii_case("NULL") {
+            return None;
+        }
+        let model = self.cx.model;
+        let pou = model.pou(self.pou)?;
+        if pou.vars.index(id.sym).is_some() || self.cx.globals.contains_key(&id.sym) {
+            return None;
+        }
+        let ty = want.filter(|&w| matches!(self.kind(w), TypeKind::Ref(_)))?;
+        let r = self.reg(automat_ir::code::RegClass::I64);
+        self.emit(Inst::IConst { dst: r, value: 0 });
+        Some(Val { v: V::I(r), ty })
+    }
+
     /// The argument of a `REF(x)` / `ADR(x)` call.
     fn ref_call_arg<'e>(&self, e: &'e Expr) -> Option<&'e Expr> {
         let ExprKind::Call { callee, args } = &e.kind else {

@@ -135,7 +135,16 @@ impl Gen<'_, '_> {
     pub fn block(&mut self, stmts: &[Stmt]) {
         for s in stmts {
             // A failed statement was reported; keep going to report others.
-            let _ = self.stmt(s);
+            // A failure nobody reported must still stop the build: running
+            // a program with a statement silently left out is the one
+            // thing lowering may never do.
+            let before = self.cx.diags.len();
+            if self.stmt(s).is_err() && self.cx.diags.len() == before {
+                self.error(
+                    s.span,
+                    "internal error: this statement could not be compiled".into(),
+                );
+            }
         }
     }
 

@@ -136,12 +136,23 @@ impl<'m> Checker<'m> {
                 self.folded(folded, ty, e.span)
             }
             ExprKind::Binary { op, lhs, rhs } => {
-                let l = self.expr(lhs, None);
-                let hint = match l.ty {
-                    Ty::Of(t) => Some(t),
-                    _ => expect,
+                // `NULL = r`: NULL takes its reference type from the other side.
+                let (l, r) = if self.is_null_name(lhs) {
+                    let r = self.expr(rhs, None);
+                    let hint = match r.ty {
+                        Ty::Of(t) => Some(t),
+                        _ => expect,
+                    };
+                    (self.expr(lhs, hint), r)
+                } else {
+                    let l = self.expr(lhs, None);
+                    let hint = match l.ty {
+                        Ty::Of(t) => Some(t),
+                        _ => expect,
+                    };
+                    let r = self.expr(rhs, hint);
+                    (l, r)
                 };
-                let r = self.expr(rhs, hint);
                 let Some(ty) = ops::binary(&self.model.types, *op, &l, &r) else {
                     self.err(Code::E031, e.span, |c| {
                         format!(
@@ -162,6 +173,46 @@ impl<'m> Checker<'m> {
             ExprKind::Call { callee, args } => self.call(e, callee, args, expect, false),
             ExprKind::Paren(inner) => self.expr_access(inner, expect, access),
             ExprKind::Error => Typed::ERROR,
+        }
+    }
+
+    /// `NULL` when no variable or enumeration value of that name hides it.
+    fn is_null(&self, sym: automat_base::Symbol) -> bool {
+        self.interner.name(sym).eq_ignore_ascii_case("NULL")
+    }
+
+    fn is_null_name(&self, e: &Expr) -> bool {
+        match &e.kind {
+            ExprKind::Name(id) => {
+                self.is_null(id.sym)
+                    && self.var(id.sym).is_none()
+                    && !self.model.enum_values.contains_key(&id.sym)
+            }
+            ExprKind::Paren(inner) => self.is_null_name(inner),
+            _ => false,
+        }
+    }
+
+    /// NULL (3rd edition): the reference that designates nothing. It has
+    /// the reference type its context wants (an assignment target, a
+    /// parameter, the other operand of a comparison); the image holds
+    /// references as offsets, and offset 0 is never a variable's.
+    fn null_value(&mut self, span: Span, expect: Option<TypeId>, access: Access) -> Typed {
+        if access.writes() {
+            self.err(Code::E042, span, |_| "cannot assign to NULL".to_string());
+            return Typed::ERROR;
+        }
+        match expect {
+            Some(t) if matches!(self.model.types.get(t), TypeKind::Ref(_)) => {
+                Typed::with(Ty::Of(t), Value::Int(0))
+            }
+            _ => {
+                self.err(Code::E031, span, |c| {
+                    let ctx = expect.map_or("no type".to_string(), |t| c.tyname(Ty::Of(t)));
+                    format!("NULL is a reference, but here {ctx} is expected")
+                });
+                Typed::ERROR
+            }
         }
     }
 
@@ -267,6 +318,9 @@ impl<'m> Checker<'m> {
             return t;
         }
         let named = self.lookup(id.sym);
+        if matches!(named, Named::Unknown) && self.is_null(id.sym) {
+            return self.null_value(id.span, expect, access);
+        }
         if matches!(named, Named::Unknown) {
             self.err(Code::E020, id.span, |c| {
                 format!("unknown variable `{}` {}", c.name(id.sym), c.where_())
