@@ -3,12 +3,12 @@
 
 use crate::layout::Layout;
 use automat_base::{Interner, SourceMap, Symbol};
-use automat_syntax::ast::{Item, SourceUnit, TypeSpec};
-use rustc_hash::FxHashMap;
 use automat_iec::Elementary;
 use automat_ir::{Field, SymbolType};
 use automat_sema::model::Section;
 use automat_sema::types::{Elem, TypeId, TypeKind};
+use automat_syntax::ast::{Item, SourceUnit, TypeSpec};
+use rustc_hash::FxHashMap;
 
 /// The IEC value type of a checker elementary type. An exhaustive match, so
 /// a type added to either enum is a compile error here rather than a silent
