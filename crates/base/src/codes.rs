@@ -161,6 +161,108 @@ codes! {
     E092 => "recursive call",
         "IEC 61131-3 forbids recursion: a function or function block calls itself, directly or through others. Every POU has one static frame.";
 
+    // ---- instruction list (IL) ----
+    E100 => "no current result",
+        "An IL instruction uses the current result (ST, S, R, AND, ADD, a conditional jump, ...) where there is none: at the start of the instruction list or of a parenthesised group, or after an unconditional JMP, RET, CAL or FB input operator. Begin with `LD`.";
+    E101 => "current result undefined after a label",
+        "A jump may reach a label with any current result, so after a label the current result is undefined: the first instruction after it must load a new one (`LD`, `LDN`, a formal function call) before using it.";
+    E102 => "missing IL operand",
+        "The IL operator needs an operand on the same line (`LD x`, `JMP label`, `CAL fb`); an instruction ends at the end of its line.";
+    E103 => "unexpected IL operand",
+        "The IL operator takes no operand (`NOT`, `RET`), or more text follows the instruction on its line: IL has one instruction per line.";
+    E104 => "unknown IL operator",
+        "The word at the start of an IL instruction is neither an IL operator (LD, ST, S, R, AND, OR, XOR, NOT, ADD, SUB, MUL, DIV, MOD, GT, GE, EQ, NE, LE, LT, JMP, CAL, RET with their N and C modifiers, FB input operators S1 R1 CLK CU CD PV IN PT) nor a function name, or it carries a modifier the operator does not take (`STC`, `ADDN`, `JMPN`).";
+    E105 => "duplicate label",
+        "Two labels of one body have the same name: a jump could not know where to go.";
+    E106 => "unknown label",
+        "A jump names a label that the body does not declare.";
+    E107 => "jump into a block",
+        "A jump may leave nested statements but never enter them: its label must be in the same statement list as the jump or in an enclosing one.";
+    E108 => "not allowed inside IL parentheses",
+        "A parenthesised IL group (`AND( ... )`) computes one value: inside it only `LD`/`LDN`, the operators that combine the current result (AND, ADD, GT, ...), `NOT` and function calls are allowed; no ST, S, R, jumps, calls of function blocks, RET or labels.";
+    E109 => "unbalanced IL parentheses",
+        "A `)` closes no parenthesised group, or a group opened by `AND(` (or another operator) is not closed before the end of the instruction list.";
+    E110 => "invalid IL operand",
+        "The operand cannot be used by this operator: ST, S and R need a variable (not a literal or an expression), a jump needs a label name, CAL and the FB input operators need a function block instance.";
+
+    // ---- sequential function charts (textual SFC) ----
+    E120 => "SFC body in a function",
+        "A chart (STEP, TRANSITION, ACTION) is the body of a FUNCTION. SFC keeps state between calls (active steps, step times), so only a PROGRAM or FUNCTION_BLOCK body can be a chart.";
+    E121 => "unknown step",
+        "A transition's FROM or TO list names a step that the chart does not declare.";
+    E122 => "duplicate chart element",
+        "Two steps, two actions, two transitions, or a step and an action share a name, or a step or action has the name of a variable of the POU (`s.X`, `s.T`, `a.Q` and `a.A` are read through that name).";
+    E123 => "chart without an initial step",
+        "Every chart needs exactly one INITIAL_STEP: the step active when the POU starts.";
+    E124 => "several initial steps",
+        "A chart has more than one INITIAL_STEP. Start parallel sequences with a simultaneous divergence from a single initial step instead.";
+    E125 => "unknown action",
+        "A step's action association names neither an ACTION of the chart nor a variable of the POU.";
+    E126 => "invalid action qualifier",
+        "The qualifier of an action association is not one of N, R, S, P, P1, P0, L, D, SD, DS, SL; a timed qualifier (L, D, SD, DS, SL) lacks its duration or another one has one; or P1/P0 (which only run code) is used with a BOOL variable.";
+    E127 => "side effect in a transition condition",
+        "A transition condition calls a function block instance, passes an output with `=>`, or calls a function with VAR_IN_OUT or VAR_OUTPUT parameters. Conditions are evaluated every cycle while the transition is enabled and must not change state.";
+    E128 => "timed associations of one action active together",
+        "Two timed associations (L, D, SD, DS, SL) of one action can be active at the same time (in one step, or in steps active together): the action has a single timer.";
+    E129 => "SD and SL on one action",
+        "An action is associated with both SD (stored and delayed) and SL (stored and limited); IEC 61131-3 forbids the combination.";
+    E130 => "invalid transition priority",
+        "`(PRIORITY := n)` of a transition needs a non-negative integer literal.";
+    E131 => "step listed twice in a transition",
+        "A step appears twice in one transition's FROM list or twice in its TO list.";
+
+    // ---- vendor dialects (automat-vendor: --lib isagraf / pl7) ----
+    E150 => "misplaced TIMER variable",
+        "ISaGRAF dialect: a TIMER keeps counting between calls, so it must be a VAR, VAR_OUTPUT, VAR_GLOBAL or VAR_EXTERNAL of a PROGRAM or FUNCTION_BLOCK (or of a global variable list); not a FUNCTION variable, an input, an in-out, a VAR_TEMP, an array element or a structure member.";
+    E151 => "TSTART/TSTOP without a TIMER",
+        "ISaGRAF dialect: `TSTART(t);` and `TSTOP(t);` are statements whose one argument is a TIMER variable declared in (or VAR_EXTERNAL of) the same POU.";
+    E152 => "unknown section",
+        "ISaGRAF dialect: a `{section ...}` pragma names a section other than begin, sequential or end.";
+    E153 => "section pragma not before a PROGRAM",
+        "ISaGRAF dialect: a `{section ...}` pragma places the PROGRAM that follows it; nothing else (a function block, a type, a global list) may come between them.";
+    E154 => "SFC program outside the sequential section",
+        "ISaGRAF dialect: Begin and End programs run straight through once per cycle; charts belong to the sequential section.";
+    E155 => "child control without a child program",
+        "ISaGRAF dialect: GSTART, GKILL, GFREEZE, GRST and GSTATUS take the name of a PROGRAM of the project (the child chart) as their one argument.";
+    E156 => "invalid child hierarchy",
+        "ISaGRAF dialect: a child chart has exactly one parent, and a program cannot control itself.";
+    E157 => "invalid qualifier for a child program",
+        "ISaGRAF dialect: a step association naming a child program starts it (`child(N)` until the step is left, `child(S)` for good) or kills it (`child(R)`); other qualifiers do not apply.";
+    E158 => "child program not written in SFC",
+        "ISaGRAF dialect: only an SFC chart can be started, killed, frozen or restarted as a child: its steps are what the commands act on.";
+    E159 => "PL7 step number used twice",
+        "PL7 dialect: step objects `%Xi` are global, so a step number names one step of one chart.";
+
+    // ---- projects, plants and scenarios (automat-project, automat-scenario) ----
+    E300 => "invalid project file",
+        "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]` and `[bind]`.";
+    E301 => "unknown plant model",
+        "`[plant] model` names no model of the plant library. The message lists every known model.";
+    E302 => "unknown plant signal",
+        "A `[bind]` entry or a scenario names a signal the plant model does not have. The message lists the model's signals.";
+    E303 => "binding to an unknown variable",
+        "A signal is bound to a PLC variable path or direct address that does not exist in the compiled program.";
+    E304 => "binding type mismatch",
+        "A BOOL signal is bound to a variable that is not BOOL, or an integer or real signal to a variable that is not numeric.";
+    E305 => "unbound actuator",
+        "An actuator of the plant is bound to nothing: no `[bind]` entry names it and no variable of the same name exists, so the plant could never move. Bind it in `[bind]`.";
+    E306 => "unbound sensor (warning)",
+        "A sensor or operator signal of the plant is bound to nothing: the PLC never sees it. This is a warning; bind it in `[bind]` if the program should read it.";
+    E307 => "invalid plant parameter",
+        "A `[plant.params]` entry or a scenario `plant` command is refused by the model (unknown key or value out of range); the message gives the model's own reason.";
+    E308 => "project has no sources",
+        "The project's `sources` (or, by default, the `*.st` files beside `automat.toml`) name no readable Structured Text file.";
+    E320 => "scenario syntax error",
+        "A line of a `.scn` scenario file does not follow the scenario language: `name`, `duration`, `seed`, `at TIME ACTION` and `expect ...` lines, conditions with `= <> < <= > >= AND OR XOR NOT` and parentheses.";
+    E321 => "unknown name in a scenario",
+        "A scenario names something that is neither a signal of the plant model, a quantity `plant.<name>`, nor a variable path of the program.";
+    E322 => "scenario type mismatch",
+        "A scenario compares or sets values of incompatible types (a BOOL with a number, an enumeration value of another type), or presses a signal that is not a BOOL operator signal.";
+    E323 => "scenario without duration",
+        "Every scenario needs a `duration` line: the PLC time it simulates.";
+    E324 => "scenario outside a project",
+        "A `.scn` file must lie in a project folder: a folder with `automat.toml` at or above it.";
+
     // ---- warnings ----
     W001 => "unused variable",
         "A local variable is declared but never read or written.";
@@ -168,6 +270,14 @@ codes! {
         "A statement follows RETURN, EXIT or CONTINUE in the same block and can never run.";
     W003 => "implicit narrowing in a constant",
         "A constant is converted to a smaller type; the value fits, so the program is accepted.";
+    W120 => "unreachable step",
+        "No sequence of transitions from the initial step can activate this step.";
+    W121 => "step without a way out",
+        "No transition leaves this step: once active it stays active (intended only for the final step of a sequence).";
+    W122 => "unused action",
+        "An ACTION of the chart is associated with no step, so it never runs.";
+    W150 => "section ignored",
+        "ISaGRAF dialect: the project has a CONFIGURATION, whose tasks decide which programs run and in what order; `{section ...}` pragmas are then ignored.";
 }
 
 /// The code table as Markdown: the content of `docs/diagnostics.md`

@@ -48,10 +48,10 @@ fn verdict(ratio: f64) -> &'static str {
     }
 }
 
-/// Runs one case: the ST program (cold start, `scans` scans) and the
-/// native version, best of `runs` each; checks the results agree.
-fn run_case(case: &cases::Case, runs: usize) -> Result<(Duration, Duration), String> {
-    let mut plc = plc::build(case.name, &case.src)?;
+/// Runs the ST program of a case (cold start, `scans` scans) on `kind`,
+/// best of `runs`; returns the time and the result it read back.
+fn run_st(case: &cases::Case, runs: usize, kind: plc::Kind) -> Result<(Duration, String), String> {
+    let mut plc = plc::build(case.name, &case.src, kind)?;
     let st = best_of(runs, || {
         plc.engine.cold_start();
         for scan in 0..case.scans {
@@ -59,19 +59,28 @@ fn run_case(case: &cases::Case, runs: usize) -> Result<(Duration, Duration), Str
         }
         Ok(())
     })?;
-    let got = (case.read)(&plc)?;
+    Ok((st, (case.read)(&plc)?))
+}
+
+/// Runs one case on the interpreter, the JIT and natively, best of `runs`
+/// each; checks that all three results agree.
+fn run_case(case: &cases::Case, runs: usize) -> Result<[Duration; 3], String> {
+    let (interp, got_i) = run_st(case, runs, plc::Kind::Interp)?;
+    let (jit, got_j) = run_st(case, runs, plc::Kind::Jit)?;
     let mut want = String::new();
     let native = best_of(runs, || {
         want = black_box((case.native)());
         Ok(())
     })?;
-    if got != want {
-        return Err(format!(
-            "{}: ST result {got:?} differs from native {want:?}",
-            case.name
-        ));
+    for (engine, got) in [("interpreter", &got_i), ("JIT", &got_j)] {
+        if *got != want {
+            return Err(format!(
+                "{}: ST result on the {engine} {got:?} differs from native {want:?}",
+                case.name
+            ));
+        }
     }
-    Ok((st, native))
+    Ok([interp, jit, native])
 }
 
 /// A project with one FB type and a program holding `n` instances, each
@@ -123,7 +132,7 @@ fn main() {
             .iter()
             .filter(|c| c.name.starts_with(name.as_str()))
         {
-            match plc::build(case.name, &case.src) {
+            match plc::build(case.name, &case.src, plc::Kind::Interp) {
                 Ok(p) => {
                     for f in &p.engine.program().funcs {
                         println!("{}:", f.name);
@@ -138,9 +147,9 @@ fn main() {
         return;
     }
 
-    println!("engine: ST through lower + interpreter vs the same algorithm in optimised Rust (best of {runs} runs, one core)\n");
-    println!("| case | ST | native | ST / native | verdict |");
-    println!("|---|---|---|---|---|");
+    println!("engine: ST through lower + interpreter and lower + JIT (Cranelift) vs the same algorithm in optimised Rust (best of {runs} runs, one core)\n");
+    println!("| case | native | interpreter | interp / native | JIT | JIT / native | verdict (JIT) |");
+    println!("|---|---|---|---|---|---|---|");
     // `--only NAME`: measure just the cases whose name starts with NAME.
     let only = args
         .iter()
@@ -151,76 +160,85 @@ fn main() {
             continue;
         }
         match run_case(&case, runs) {
-            Ok((st, native)) => {
-                let ratio = st.as_secs_f64() / native.as_secs_f64().max(1e-9);
+            Ok([interp, jit, native]) => {
+                let n = native.as_secs_f64().max(1e-9);
+                let (ri, rj) = (interp.as_secs_f64() / n, jit.as_secs_f64() / n);
                 println!(
-                    "| {} | {} | {} | {:.1}× | {} |",
+                    "| {} | {} | {} | {:.1}× | {} | {:.1}× | {} |",
                     case.name,
-                    fmt_time(st),
                     fmt_time(native),
-                    ratio,
-                    verdict(ratio)
+                    fmt_time(interp),
+                    ri,
+                    fmt_time(jit),
+                    rj,
+                    verdict(rj)
                 );
             }
             Err(e) => {
                 failed = true;
-                println!("| {} | error | | | {e} |", case.name);
+                println!("| {} | error | | | | | {e} |", case.name);
             }
         }
+    }
+    if only.is_some() {
+        return;
     }
 
     println!("\n| measure | time | bar | verdict |");
     println!("|---|---|---|---|");
     let src = many_instances(1000);
-    let mut load = || -> Result<(), String> {
-        black_box(plc::build("plant", &src)?);
-        Ok(())
-    };
-    match best_of(runs, &mut load) {
-        Ok(d) => println!(
-            "| compile + load, 1,000 FB instances ({} lines) | {} | well under 1 s | {} |",
-            src.lines().count(),
-            fmt_time(d),
-            if d.as_secs_f64() < 0.5 {
-                "meets bar"
-            } else {
-                "**misses bar**"
-            }
-        ),
-        Err(e) => {
-            failed = true;
-            println!("| compile + load, 1,000 FB instances | error | | {e} |");
-        }
-    }
-    let scans = 1_000_000u32;
-    let empty = plc::build(
-        "empty",
-        "PROGRAM Empty\nVAR x : INT; END_VAR\nEND_PROGRAM\n",
-    )
-    .and_then(|mut p| {
-        best_of(runs, || {
-            for scan in 0..scans {
-                p.scan(black_box(scan as i64))?;
-            }
+    for (kind, label) in [(plc::Kind::Interp, "interpreter"), (plc::Kind::Jit, "JIT")] {
+        let mut load = || -> Result<(), String> {
+            black_box(plc::build("plant", &src, kind)?);
             Ok(())
-        })
-    });
-    match empty {
-        Ok(d) => {
-            let per = d / scans;
-            println!(
-                "| empty-program scan overhead | {} per scan | < 1 µs | {} |",
-                fmt_time(per),
-                if per < Duration::from_micros(1) {
+        };
+        match best_of(runs, &mut load) {
+            Ok(d) => println!(
+                "| compile + load, 1,000 FB instances ({} lines), {label} | {} | well under 1 s | {} |",
+                src.lines().count(),
+                fmt_time(d),
+                if d.as_secs_f64() < 0.5 {
                     "meets bar"
                 } else {
                     "**misses bar**"
                 }
-            );
+            ),
+            Err(e) => {
+                failed = true;
+                println!("| compile + load, 1,000 FB instances, {label} | error | | {e} |");
+            }
         }
-        Err(e) => {
-            failed = true;
-            println!("| empty-program scan overhead | error | | {e} |");
+        let scans = 1_000_000u32;
+        let empty = plc::build(
+            "empty",
+            "PROGRAM Empty\nVAR x : INT; END_VAR\nEND_PROGRAM\n",
+            kind,
+        )
+        .and_then(|mut p| {
+            best_of(runs, || {
+                for scan in 0..scans {
+                    p.scan(black_box(scan as i64))?;
+                }
+                Ok(())
+            })
+        });
+        match empty {
+            Ok(d) => {
+                let per = d / scans;
+                println!(
+                    "| empty-program scan overhead, {label} | {} per scan | < 1 µs | {} |",
+                    fmt_time(per),
+                    if per < Duration::from_micros(1) {
+                        "meets bar"
+                    } else {
+                        "**misses bar**"
+                    }
+                );
+            }
+            Err(e) => {
+                failed = true;
+                println!("| empty-program scan overhead, {label} | error | | {e} |");
+            }
         }
     }
     if failed {

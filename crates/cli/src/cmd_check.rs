@@ -25,6 +25,11 @@ pub struct CheckArgs {
     /// Do not print warnings.
     #[arg(long, conflicts_with = "deny_warnings")]
     no_warnings: bool,
+    /// Use a vendor dialect (repeatable): `isagraf` (ISaGRAF helper blocks,
+    /// TIMER, sections, child charts) or `pl7` (%Xi steps, %S/%SW system
+    /// objects, P1/N1/P0). See docs/vendor-dialects.md.
+    #[arg(long = "lib", value_name = "NAME")]
+    libs: Vec<String>,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -36,15 +41,23 @@ enum Format {
 }
 
 pub fn run(args: &CheckArgs) -> Outcome {
-    let map = match files::collect(&args.paths).and_then(|f| files::load(&f)) {
+    let dialects = match automat_vendor::parse_names(&args.libs) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("error: --lib: {e}");
+            return Outcome::BadInput;
+        }
+    };
+    let mut map = match files::collect(&args.paths).and_then(|f| files::load(&f)) {
         Ok(m) => m,
         Err(e) => {
             eprintln!("error: {e}");
             return Outcome::BadInput;
         }
     };
+    automat_vendor::add_libraries(&mut map, &dialects);
     let mut interner = Interner::new();
-    let (_units, analysis) = automat_sema::check_sources(&map, &mut interner);
+    let (_units, analysis) = automat_vendor::check_sources(&map, &mut interner, &dialects);
     let mut diags = analysis.diagnostics;
     if args.no_warnings {
         diags.retain(|d| d.severity == Severity::Error);

@@ -6,7 +6,6 @@
 
 use crate::{files, Outcome};
 use automat_base::{render, Code, Diagnostic, Interner, SourceMap};
-use automat_engine::Engine;
 use automat_ir::Program;
 use automat_lower::{lower, LowerOptions};
 use automat_runtime::io::NoIo;
@@ -43,56 +42,75 @@ use std::sync::Arc;
 pub struct RunArgs {
     /// Source files or project directories (searched recursively for *.st).
     #[arg(required = true, value_name = "PATH")]
-    paths: Vec<PathBuf>,
+    pub(crate) paths: Vec<PathBuf>,
     /// The PROGRAM to run when there is no CONFIGURATION and several PROGRAMs.
     #[arg(long, value_name = "NAME")]
-    program: Option<String>,
+    pub(crate) program: Option<String>,
     /// Stop after N cycles of the fastest task (implies --virtual-clock).
     #[arg(long, value_name = "N", conflicts_with = "duration")]
-    cycles: Option<u64>,
+    pub(crate) cycles: Option<u64>,
     /// Stop when PLC time reaches TIME: a task of interval I runs at 0, I,
     /// 2I, ... < TIME (implies --virtual-clock). TIME as `1s` or `T#1s500ms`.
     #[arg(long, value_name = "TIME", value_parser = timearg::parse_duration)]
-    duration: Option<i64>,
+    pub(crate) duration: Option<i64>,
     /// Period of the cyclic task when there is no CONFIGURATION (`10ms` or `T#10ms`).
-    #[arg(long, value_name = "TIME", default_value = "10ms", value_parser = timearg::parse_duration)]
-    cycle_time: i64,
+    /// (Default 10ms, or the project's `cycle_time`.)
+    #[arg(long, value_name = "TIME", value_parser = timearg::parse_duration)]
+    pub(crate) cycle_time: Option<i64>,
     /// Run scans back to back on virtual PLC time instead of real time.
     #[arg(long)]
-    virtual_clock: bool,
+    pub(crate) virtual_clock: bool,
     /// After the run, print `VAR = VALUE` (repeatable; in the order given).
     /// VAR: `x` (a variable of the program), `inst.fb.Q`, `arr[2, 1].x`,
     /// a global name, or a direct address such as `%QX0.1`. VALUE is an IEC
     /// literal: TRUE, 42, 3.5, T#1s500ms, 'abc'.
     #[arg(long = "print", value_name = "VAR")]
-    print: Vec<String>,
+    pub(crate) print: Vec<String>,
     /// Variables to trace, separated by commas (repeatable): one CSV row per
     /// scan with the PLC time then each value. Needs --trace-file.
     #[arg(long, value_name = "VAR,...", requires = "trace_file")]
-    trace: Vec<String>,
+    pub(crate) trace: Vec<String>,
     /// The CSV file --trace writes: a header row (`time` and the variable
     /// names), then one row per scan, every cell in the --print form
     /// (`T#20ms,5,TRUE`).
     #[arg(long, value_name = "FILE", requires = "trace")]
-    trace_file: Option<PathBuf>,
+    pub(crate) trace_file: Option<PathBuf>,
     /// Keep RETAIN variables in FILE: loaded at start (warm start), saved
     /// when the run stops (also after a runtime fault). A missing, damaged
     /// or outdated file (the program's RETAIN variables changed) means a
     /// cold start, with a warning for the last two.
     #[arg(long, value_name = "FILE")]
-    retain: Option<PathBuf>,
+    pub(crate) retain: Option<PathBuf>,
     /// Cold start: ignore the --retain file (it is still written at stop).
     #[arg(long)]
-    cold: bool,
+    pub(crate) cold: bool,
     /// Print scan statistics (scan time min/avg/max, overruns, runs per
     /// task) to stderr after the run.
     #[arg(long)]
-    stats: bool,
+    pub(crate) stats: bool,
+    /// Use a vendor dialect (repeatable): `isagraf` (ISaGRAF helper blocks,
+    /// TIMER, sections, child charts) or `pl7` (%Xi steps, %S/%SW system
+    /// objects, P1/N1/P0). See docs/vendor-dialects.md.
+    #[arg(long = "lib", value_name = "NAME")]
+    pub(crate) libs: Vec<String>,
+    /// The backend: `jit` (native code; a program it cannot compile runs on
+    /// the interpreter, with a note) or `interp` (the reference interpreter).
+    #[arg(long, value_enum, default_value_t = crate::engines::EngineKind::Jit)]
+    pub(crate) engine: crate::engines::EngineKind,
+    /// Project folders only: in real time, run N times faster than real
+    /// time (PLC and plant time both).
+    #[arg(long, value_name = "N", default_value_t = 1.0)]
+    pub(crate) speed: f64,
+    /// Project folders only: apply the timed actions of this scenario file
+    /// (its expectations are checked by `automat test`); its `duration`
+    /// bounds the run when neither --cycles nor --duration is given.
+    #[arg(long, value_name = "FILE.scn")]
+    pub(crate) scenario: Option<PathBuf>,
 }
 
 /// Splits `--trace` values on the commas that are not inside `[...]`, so
 /// `a,arr[1, 2].x` is two variables.
-fn split_trace(values: &[String]) -> Vec<String> {
+pub(crate) fn split_trace(values: &[String]) -> Vec<String> {
     let mut out = Vec::new();
     for v in values {
         let mut depth = 0i32;
@@ -116,14 +134,19 @@ fn split_trace(values: &[String]) -> Vec<String> {
 
 /// Parses, checks and lowers the project; diagnostics are printed to stderr.
 fn compile(args: &RunArgs) -> Result<Program, Outcome> {
-    let map: SourceMap = files::collect(&args.paths)
+    let dialects = automat_vendor::parse_names(&args.libs).map_err(|e| {
+        eprintln!("error: --lib: {e}");
+        Outcome::BadInput
+    })?;
+    let mut map: SourceMap = files::collect(&args.paths)
         .and_then(|f| files::load(&f))
         .map_err(|e| {
             eprintln!("error: {e}");
             Outcome::BadInput
         })?;
+    automat_vendor::add_libraries(&mut map, &dialects);
     let mut interner = Interner::new();
-    let (units, analysis) = automat_sema::check_sources(&map, &mut interner);
+    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &dialects);
     if !analysis.diagnostics.is_empty() {
         eprint!("{}", render::render_report(&map, &analysis.diagnostics));
     }
@@ -145,7 +168,7 @@ fn compile(args: &RunArgs) -> Result<Program, Outcome> {
 }
 
 /// Resolves every variable named on the command line.
-fn places(
+pub(crate) fn places(
     program: &Program,
     names: &[String],
     option: &str,
@@ -162,7 +185,7 @@ fn places(
         .collect()
 }
 
-fn warm_start(engine: &mut Engine, args: &RunArgs) {
+pub(crate) fn warm_start<E: automat_runtime::Executor>(engine: &mut E, args: &RunArgs) {
     let Some(path) = &args.retain else {
         return;
     };
@@ -183,14 +206,20 @@ pub fn run_cmd(args: &RunArgs) -> Outcome {
 }
 
 fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
-    if args.cycle_time <= 0 {
+    if let [p] = args.paths.as_slice() {
+        if let Some(toml) = automat_project::project_file(p) {
+            return crate::project_run::run(args, &toml);
+        }
+    }
+    let cycle_time = args.cycle_time.unwrap_or(10_000_000);
+    if cycle_time <= 0 {
         eprintln!("error: --cycle-time must be longer than 0");
         return Err(Outcome::BadInput);
     }
     let program = compile(args)?;
     let prints = places(&program, &args.print, "--print")?;
     let traced = places(&program, &split_trace(&args.trace), "--trace")?;
-    let mut engine = Engine::new(program);
+    let mut engine = crate::engines::build(program, args.engine);
     warm_start(&mut engine, args);
 
     let mut trace = match &args.trace_file {
@@ -229,7 +258,7 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
     }
 
     let cfg = RunConfig {
-        cycle_time_ns: args.cycle_time,
+        cycle_time_ns: cycle_time,
         clock,
         limit,
     };
@@ -257,7 +286,7 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
 /// After the run: trace flushed, RETAIN saved, values printed, fault reported.
 fn finish(
     args: &RunArgs,
-    engine: &Engine,
+    engine: &impl automat_runtime::Executor,
     trace: Option<Trace<BufWriter<File>>>,
     prints: &[(String, Place)],
     report: RunReport,

@@ -7,7 +7,12 @@
 mod cmd_check;
 mod cmd_explain;
 mod cmd_run;
+mod cmd_test;
+mod engines;
 mod files;
+mod live;
+mod plot;
+mod project_run;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -28,6 +33,8 @@ enum Command {
     Check(cmd_check::CheckArgs),
     Explain(cmd_explain::ExplainArgs),
     Run(cmd_run::RunArgs),
+    Test(cmd_test::TestArgs),
+    Plot(plot::PlotArgs),
 }
 
 /// Exit status of a command.
@@ -52,6 +59,8 @@ fn main() -> ExitCode {
         Command::Check(args) => cmd_check::run(&args),
         Command::Explain(args) => cmd_explain::run(&args),
         Command::Run(args) => cmd_run::run_cmd(&args),
+        Command::Test(args) => cmd_test::run(&args),
+        Command::Plot(args) => plot::run(&args),
     };
     ExitCode::from(match outcome {
         Outcome::Ok => 0,

@@ -28,6 +28,8 @@
 //!   it does), never as passed, and never fails the run.
 //! - `known-bug: REASON` — the tool is known to be wrong here: mismatches
 //!   are reported but do not fail the run.
+//! - `libraries: NAME[, NAME]` — vendor dialects and their libraries, as
+//!   `automat run --lib NAME` (`isagraf`, `pl7`; see `docs/vendor-dialects.md`).
 //!
 //! Every other mismatch fails the test; all are reported at the end.
 
@@ -124,6 +126,16 @@ fn verdicts() {
 
 #[test]
 fn conformance_corpus() {
+    corpus_on(exec::Backend::Interp);
+}
+
+/// The same corpus on the JIT: every verdict must be the interpreter's.
+#[test]
+fn conformance_corpus_jit() {
+    corpus_on(exec::Backend::Jit);
+}
+
+fn corpus_on(backend: exec::Backend) {
     let mut files: Vec<PathBuf> = std::fs::read_dir(corpus())
         .unwrap_or_else(|e| panic!("{}: {e}", corpus().display()))
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -145,7 +157,7 @@ fn conformance_corpus() {
                 continue;
             }
         };
-        match verdict(&name, &spec, &exec::check(&name, &text, &spec)) {
+        match verdict(&name, &spec, &exec::check_on(&name, &text, &spec, backend)) {
             Verdict::Passed => passed += 1,
             Verdict::Failed(m) => failed.push(m),
             Verdict::Pending(m) => pending.push(m),
@@ -162,7 +174,7 @@ fn conformance_corpus() {
         eprintln!("FAILED {f}");
     }
     eprintln!(
-        "conformance: {} cases: {passed} passed, {} failed, {} pending, {} known bugs",
+        "conformance ({backend:?}): {} cases: {passed} passed, {} failed, {} pending, {} known bugs",
         files.len(),
         failed.len(),
         pending.len(),

@@ -71,7 +71,7 @@ pub fn fault(
 
 /// The fault of a failed range check (`Check` with constant bounds and
 /// `CheckDyn` with bounds in registers share it): index, subrange, NULL.
-fn check_range(
+pub fn check_range(
     program: &Program,
     func: u32,
     kind: CheckKind,

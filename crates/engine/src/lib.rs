@@ -20,6 +20,14 @@ mod fuse;
 mod interp;
 pub mod mem;
 
+/// What another backend (the Cranelift JIT, `automat-jit`) shares with the
+/// interpreter so that semantics and fault messages exist once: the
+/// standard functions over a register slice, and the fault constructors.
+pub mod shared {
+    pub use crate::builtins::call as builtin;
+    pub use crate::interp::{check_range, fault, Ctx};
+}
+
 use automat_ir::{Fault, FaultKind, Program, ProgramInstance, Site};
 
 /// Default watchdog budget: instructions per `run_program`.

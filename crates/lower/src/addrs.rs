@@ -76,7 +76,12 @@ fn stmt(s: &Stmt, out: &mut Vec<DirectAddress>) {
             expr(cond, out);
             block(body, out);
         }
-        StmtKind::Return | StmtKind::Exit | StmtKind::Continue | StmtKind::Empty => {}
+        StmtKind::Return
+        | StmtKind::Exit
+        | StmtKind::Continue
+        | StmtKind::Empty
+        | StmtKind::Label(_)
+        | StmtKind::Goto(_) => {}
     }
 }
 

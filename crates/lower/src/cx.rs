@@ -28,6 +28,8 @@ pub struct Cx<'a> {
     pub top: u32,
     pub sites: Vec<Site>,
     pub diags: Vec<Diagnostic>,
+    /// Hidden EN/ENO bytes: stored where, read anywhere (`gen/lean.rs`).
+    pub hidden: crate::gen::lean::Hidden,
 }
 
 impl Cx<'_> {

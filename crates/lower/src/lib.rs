@@ -68,6 +68,7 @@ pub fn lower(
         top: 0,
         sites: Vec::new(),
         diags: Vec::new(),
+        hidden: Default::default(),
     };
     cx.layout.spellings = symbols::spellings(units, sources);
     let areas_end = cx.layout.size_areas(&addrs::in_bodies(units));
@@ -150,6 +151,7 @@ pub fn lower(
     for i in 0..model.pous.len() {
         funcs.push(gen::pou(&mut cx, PouId(i as u32)));
     }
+    gen::lean::finish(&mut funcs, &cx.hidden);
     if cx.diags.iter().any(Diagnostic::is_error) {
         return Err(cx.diags);
     }

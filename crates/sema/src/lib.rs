@@ -57,6 +57,7 @@ pub mod literal;
 pub mod model;
 pub mod names;
 pub mod ops;
+mod sfc;
 pub mod stdlib;
 pub mod types;
 pub mod value;
@@ -100,6 +101,9 @@ pub fn check(units: &[SourceUnit], interner: &mut Interner) -> Analysis {
             }
             if let Some(ast) = model.pou_ast(units, PouId(i as u32)) {
                 ck.check_pou(PouId(i as u32), ast);
+                if let automat_syntax::ast::Lang::Sfc(chart) = &ast.lang {
+                    sfc::check_chart(&model, interner, PouId(i as u32), chart, &mut diags);
+                }
             }
         }
         diags.append(&mut ck.diags);

@@ -14,7 +14,8 @@
 //! - No panic, no hang, no stack overflow on any input: every loop consumes
 //!   a token, and nesting (and chains such as `a + b + ...`) is limited to
 //!   [`MAX_DEPTH`] levels, which also bounds the depth of every returned tree.
-//! - Diagnostics E001–E007 only, each at the offending token with a message
+//! - Diagnostics E001–E007 (and, for IL bodies, E100–E104 and E108–E110:
+//!   see `parser/il.rs` and `desugar/il.rs`), each at the offending token with a message
 //!   naming what was expected and what was found, sorted by position. One
 //!   mistake gives one error: see `parser` for the recovery rules.
 //! - Literals are checked here: malformed ones (E004), integers beyond 64 bits
@@ -25,6 +26,7 @@
 //!   with `ty` REAL; giving it its type is the checker's job.
 
 pub mod ast;
+mod desugar;
 pub mod lexer;
 mod literal;
 mod parser;

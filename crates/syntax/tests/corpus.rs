@@ -25,6 +25,8 @@ fn is_syntax_code(code: &str) -> bool {
     matches!(
         code,
         "E001" | "E002" | "E003" | "E004" | "E005" | "E006" | "E007"
+            // The IL codes the parser reports (E105–E107 are the checker's).
+            | "E100" | "E101" | "E102" | "E103" | "E104" | "E108" | "E109" | "E110"
     )
 }
 

@@ -4,17 +4,59 @@
 
 use automat_base::{Interner, SourceMap};
 use automat_engine::Engine;
-use automat_ir::{ProgramInstance, SymbolType};
+use automat_ir::{Fault, Program, ProgramInstance, SymbolType};
+use automat_jit::Jit;
 use automat_lower::{lower, LowerOptions};
 
+/// Which backend runs the program.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    Interp,
+    Jit,
+}
+
+/// The interpreter or the JIT, behind the few calls the benchmark makes.
+pub enum Exec {
+    Interp(Box<Engine>),
+    Jit(Box<Jit>),
+}
+
+impl Exec {
+    pub fn program(&self) -> &Program {
+        match self {
+            Exec::Interp(e) => e.program(),
+            Exec::Jit(j) => j.program(),
+        }
+    }
+    pub fn image(&self) -> &[u8] {
+        match self {
+            Exec::Interp(e) => e.image(),
+            Exec::Jit(j) => j.image(),
+        }
+    }
+    pub fn cold_start(&mut self) {
+        match self {
+            Exec::Interp(e) => e.cold_start(),
+            Exec::Jit(j) => j.cold_start(),
+        }
+    }
+    pub fn run_program(&mut self, inst: &ProgramInstance, now: i64) -> Result<(), Fault> {
+        match self {
+            Exec::Interp(e) => e.run_program(inst, now),
+            Exec::Jit(j) => j.run_program(inst, now),
+        }
+    }
+}
+
 pub struct Plc {
-    pub engine: Engine,
+    pub engine: Exec,
     pub inst: ProgramInstance,
 }
 
-/// Compiles `src` (one file) and loads it into a fresh engine; the error
-/// names every diagnostic so a broken case is easy to fix.
-pub fn build(name: &str, src: &str) -> Result<Plc, String> {
+/// Compiles `src` (one file) and loads it into a fresh engine of `kind`
+/// (for the JIT: compiles it to native code); the error names every
+/// diagnostic so a broken case is easy to fix.
+pub fn build(name: &str, src: &str, kind: Kind) -> Result<Plc, String> {
     let mut sources = SourceMap::new();
     sources.add(format!("{name}.st"), src.to_string());
     let mut interner = Interner::new();
@@ -42,9 +84,19 @@ pub fn build(name: &str, src: &str) -> Result<Plc, String> {
         .and_then(|t| t.programs.first())
         .cloned()
         .ok_or_else(|| format!("{name}: no program instance to run"))?;
-    let mut engine = Engine::new(program);
     // The compute cases run millions of instructions in one scan on purpose.
-    engine.set_budget(u64::MAX);
+    let engine = match kind {
+        Kind::Interp => {
+            let mut e = Engine::new(program);
+            e.set_budget(u64::MAX);
+            Exec::Interp(Box::new(e))
+        }
+        Kind::Jit => {
+            let mut j = Jit::new(program).map_err(|e| format!("{name}: {e}"))?;
+            j.set_budget(u64::MAX);
+            Exec::Jit(Box::new(j))
+        }
+    };
     Ok(Plc { engine, inst })
 }
 

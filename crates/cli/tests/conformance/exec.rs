@@ -11,14 +11,17 @@ use automat_runtime::scan::Env;
 use automat_runtime::{
     resolve, run, value, ClockMode, Limit, Place, RunConfig, RunEnd, ScanObserver, SystemClock,
 };
+use automat_runtime::Executor;
 use std::sync::atomic::AtomicBool;
 
 /// Parses, checks and lowers one file; the error is the rendered diagnostics.
 fn compile(name: &str, text: &str, spec: &Spec) -> Result<Program, String> {
     let mut map = SourceMap::new();
     map.add(name, text);
+    let dialects = automat_vendor::parse_names(&spec.libraries)?;
+    automat_vendor::add_libraries(&mut map, &dialects);
     let mut interner = Interner::new();
-    let (units, analysis) = automat_sema::check_sources(&map, &mut interner);
+    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &dialects);
     if analysis.has_errors() {
         return Err(render::render_report(&map, &analysis.diagnostics));
     }
@@ -48,18 +51,57 @@ impl ScanObserver for Snapshots<'_> {
     }
 }
 
-/// Runs a case; returns the list of mismatches (empty: it passed).
+/// The backend a case runs on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backend {
+    Interp,
+    /// The Cranelift JIT (`automat-jit`); a program it refuses is a failure.
+    Jit,
+}
+
+/// Runs a case on the interpreter; returns the list of mismatches (empty:
+/// it passed).
 pub fn check(name: &str, text: &str, spec: &Spec) -> Result<Vec<String>, String> {
+    check_on(name, text, spec, Backend::Interp)
+}
+
+/// Runs a case on `backend`.
+pub fn check_on(
+    name: &str,
+    text: &str,
+    spec: &Spec,
+    backend: Backend,
+) -> Result<Vec<String>, String> {
     let program = compile(name, text, spec)?;
+    match backend {
+        Backend::Interp => {
+            let mut engine = Engine::new(program);
+            if let Some(b) = spec.budget {
+                engine.set_budget(b);
+            }
+            observe(&mut engine, spec)
+        }
+        Backend::Jit => {
+            let mut jit =
+                automat_jit::Jit::new(program).map_err(|e| format!("the JIT refused it: {e}"))?;
+            if let Some(b) = spec.budget {
+                jit.set_budget(b);
+            }
+            observe(&mut jit, spec)
+        }
+    }
+}
+
+fn observe<E: Executor>(
+    engine: &mut E,
+    spec: &Spec,
+) -> Result<Vec<String>, String> {
+    let program = engine.program().clone();
     let mut places = Vec::new();
     for e in &spec.expects {
         let p = resolve(&program, &e.path)
             .map_err(|err| format!("line {}: cannot resolve `{}`: {err}", e.line, e.path))?;
         places.push((e, p));
-    }
-    let mut engine = Engine::new(program);
-    if let Some(b) = spec.budget {
-        engine.set_budget(b);
     }
     let mut snaps = Snapshots {
         scans: 0,
@@ -85,7 +127,7 @@ pub fn check(name: &str, text: &str, spec: &Spec) -> Result<Vec<String>, String>
         observer: &mut snaps,
         stop: &stop,
     };
-    let report = run(&mut engine, &cfg, &mut env)?;
+    let report = run(engine, &cfg, &mut env)?;
     let mut fails = Vec::new();
     match (&report.end, &spec.fault) {
         (RunEnd::Fault(f), Some(want)) => {

@@ -38,6 +38,8 @@ pub struct Spec {
     pub pending: Option<String>,
     /// `known-bug:` reason: a failure is reported but does not fail the run.
     pub known_bug: Option<String>,
+    /// `libraries: isagraf, ...`: vendor dialects (`automat run --lib`).
+    pub libraries: Vec<String>,
 }
 
 fn fault_kind(name: &str) -> Option<FaultKind> {
@@ -110,6 +112,7 @@ pub fn parse(source: &str) -> Result<Spec, String> {
         fault: None,
         pending: None,
         known_bug: None,
+        libraries: Vec::new(),
     };
     for (i, raw) in text.lines().enumerate() {
         let line = first_line + i;
@@ -147,6 +150,9 @@ pub fn parse(source: &str) -> Result<Spec, String> {
             }
             "skip-until" => spec.pending = Some(rest.to_string()),
             "known-bug" => spec.known_bug = Some(rest.to_string()),
+            "libraries" => spec
+                .libraries
+                .extend(rest.split(',').map(|l| l.trim().to_string())),
             k if k.starts_with("expect-at ") => {
                 let n = k["expect-at ".len()..].trim();
                 let at = n

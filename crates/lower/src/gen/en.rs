@@ -131,6 +131,9 @@ impl Gen<'_, '_> {
     /// `one`: a register already holding TRUE, for the hidden EN byte.
     fn bind_eno(&mut self, c: &EnEno, hidden: Option<Addr>, r: Reg, one: Option<Reg>) -> Res<()> {
         if let Some(at) = hidden {
+            let pou = self.pou.0;
+            self.cx.hidden.stores.insert((pou, at));
+            self.cx.hidden.stores.insert((pou, super::expr::add(at, 1)));
             self.emit(Inst::Store {
                 src: r,
                 ty: MemTy::U8,

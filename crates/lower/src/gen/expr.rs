@@ -258,6 +258,7 @@ impl Gen<'_, '_> {
                 match (p.vars.index(name), hidden) {
                     (None, Some(at)) if name == syms.eno || name == syms.en => {
                         let at = if name == syms.eno { at } else { at + 1 };
+                        self.cx.hidden.read = true;
                         return Ok(Lv {
                             addr: add(b.addr, at),
                             bit: None,

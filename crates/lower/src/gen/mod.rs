@@ -9,6 +9,8 @@ mod call;
 mod en;
 mod expr;
 mod forloop;
+mod jumps;
+pub mod lean;
 mod ops;
 mod peep;
 mod refs;
@@ -89,6 +91,11 @@ pub struct Gen<'c, 'a> {
     /// jump target, where a value from the previous instruction cannot be
     /// reused.
     label: std::cell::Cell<u32>,
+    /// IL labels (`StmtKind::Label`) placed so far: name → instruction.
+    labels: rustc_hash::FxHashMap<automat_base::Symbol, u32>,
+    /// Jumps to labels not placed yet (`StmtKind::Goto` forward), patched
+    /// when the label is reached.
+    gotos: Vec<(automat_base::Symbol, u32, Span)>,
 }
 
 struct LoopCx {
@@ -109,6 +116,8 @@ impl<'c, 'a> Gen<'c, 'a> {
             temps: Vec::new(),
             temps_used: 0,
             label: std::cell::Cell::new(u32::MAX),
+            labels: rustc_hash::FxHashMap::default(),
+            gotos: Vec::new(),
         }
     }
 

@@ -67,6 +67,23 @@ fn drop_jumps_to_next(f: &mut Func) -> bool {
     true
 }
 
+/// Removes the instructions whose `keep` flag is false (jump targets and
+/// statement starts move to the next kept instruction); whether any went.
+pub fn remove(f: &mut Func, keep: &[bool]) -> bool {
+    if keep.len() != f.code.len() || keep.iter().all(|&k| k) {
+        return false;
+    }
+    let code = std::mem::take(&mut f.code);
+    let kept = code
+        .into_iter()
+        .zip(keep)
+        .filter(|(_, &k)| k)
+        .map(|(inst, _)| inst)
+        .collect();
+    rebuild(f, keep, Vec::new(), kept);
+    true
+}
+
 /// Sets `f.code` to `prefix` followed by `kept` (the instructions whose
 /// `keep` flag is set, in order), moving jump targets and statement starts
 /// along: a removed instruction's index becomes that of the next kept one.

@@ -25,6 +25,7 @@ pub fn pou(cx: &mut Cx, id: PouId) -> Func {
     g.prologue(p.kind == PouKind::Function);
     let Body::St(stmts) = &ast.body;
     g.block(stmts);
+    let _ = g.unresolved_gotos();
     let end = g.here();
     for j in std::mem::take(&mut g.returns) {
         g.patch(j, end);
@@ -168,6 +169,14 @@ impl Gen<'_, '_> {
                 Ok(())
             }
             StmtKind::Empty => Ok(()),
+            StmtKind::Label(l) => {
+                self.place_label(*l);
+                Ok(())
+            }
+            StmtKind::Goto(l) => {
+                self.goto(*l);
+                Ok(())
+            }
             StmtKind::If {
                 branches,
                 else_body,

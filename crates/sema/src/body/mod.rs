@@ -10,6 +10,7 @@
 
 mod call;
 mod expr;
+mod labels;
 pub mod resolve;
 mod stdcall;
 mod stmt;
@@ -123,7 +124,10 @@ impl<'m> Checker<'m> {
         };
         self.used = info.vars.vars.iter().map(|_| Cell::new(false)).collect();
         match &pou.body {
-            ast::Body::St(stmts) => self.stmts(stmts),
+            ast::Body::St(stmts) => {
+                self.check_labels(stmts);
+                self.stmts(stmts);
+            }
         }
         self.warn_unused(info);
     }

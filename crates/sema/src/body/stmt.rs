@@ -14,16 +14,20 @@ impl<'m> Checker<'m> {
     pub(crate) fn stmts(&mut self, body: &[Stmt]) {
         let mut after_jump = false;
         for s in body {
+            // A label can be jumped to: what follows it is reachable again.
+            if matches!(s.kind, StmtKind::Label(_)) {
+                after_jump = false;
+            }
             if after_jump && !matches!(s.kind, StmtKind::Empty) {
                 self.warn(Code::W002, s.span, |_| {
-                    "unreachable statement: it follows RETURN, EXIT or CONTINUE".into()
+                    "unreachable statement: it follows RETURN, EXIT, CONTINUE or an unconditional jump".into()
                 });
                 after_jump = false;
             }
             self.stmt(s);
             // (EXIT and CONTINUE outside a loop are errors, not jumps.)
             let jumps = match s.kind {
-                StmtKind::Return => true,
+                StmtKind::Return | StmtKind::Goto(_) => true,
                 StmtKind::Exit | StmtKind::Continue => self.loop_depth > 0,
                 _ => false,
             };
@@ -70,7 +74,8 @@ impl<'m> Checker<'m> {
                     }
                 }
             },
-            StmtKind::Return | StmtKind::Empty => {}
+            // Labels and jumps are checked once per body (`labels.rs`).
+            StmtKind::Return | StmtKind::Empty | StmtKind::Label(_) | StmtKind::Goto(_) => {}
             StmtKind::If {
                 branches,
                 else_body,

@@ -18,8 +18,9 @@ use crate::types::Elem;
 
 pub use conv::ConvTy;
 
-/// The ST source of the standard function blocks.
-pub const FB_SOURCE: &str = include_str!("fbs.st");
+/// The ST source of the standard function blocks (and of the hidden blocks
+/// SFC charts are rewritten into, `sfc.st`).
+pub const FB_SOURCE: &str = concat!(include_str!("fbs.st"), include_str!("sfc.st"));
 
 /// The file id given to the standard library's spans (no file of a project has it).
 pub const STD_FILE: automat_base::FileId = automat_base::FileId(u32::MAX);

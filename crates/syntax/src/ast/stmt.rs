@@ -50,6 +50,13 @@ pub enum StmtKind {
     Continue,
     /// A lone `;`.
     Empty,
+    /// `name:` — a jump target. Never written in ST: produced by the IL
+    /// desugaring (`desugar::il`), so later stages see IL jumps as ST.
+    Label(Ident),
+    /// A jump to a [`StmtKind::Label`] of the same body, in the same
+    /// statement list or an enclosing one (never into a nested block).
+    /// Like `Label`, only produced by desugaring.
+    Goto(Ident),
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -104,7 +104,7 @@ macro_rules! keywords {
 /// Keyword lookup by a perfect hash: the multiplier was chosen so that no
 /// two keywords share a slot (checked when the table is built, at compile
 /// time). One hash over the word, one case-insensitive comparison.
-const KW_HASH_MUL: u32 = 1490;
+const KW_HASH_MUL: u32 = 358;
 
 /// One step of the keyword hash. Clearing bit 5 folds ASCII case (it also
 /// merges a few non-letters, which only costs a comparison, never a wrong
@@ -115,12 +115,12 @@ pub(crate) const fn kw_hash_step(h: u32, c: u8) -> u32 {
 }
 
 const fn kw_slot(h: u32) -> usize {
-    ((h ^ (h >> 7)) & 255) as usize
+    ((h ^ (h >> 7)) & 511) as usize
 }
 
 /// Slot → index + 1 into `Kw::ALL` (0 = no keyword).
-const KW_TABLE: [u8; 256] = {
-    let mut table = [0u8; 256];
+const KW_TABLE: [u8; 512] = {
+    let mut table = [0u8; 512];
     let mut i = 0;
     while i < Kw::TEXTS.len() {
         let w = Kw::TEXTS[i];
@@ -231,6 +231,13 @@ keywords! {
     With => b"WITH",
     ReadWrite => b"READ_WRITE",
     ReadOnly => b"READ_ONLY",
+    InitialStep => b"INITIAL_STEP",
+    Step => b"STEP",
+    EndStep => b"END_STEP",
+    Transition => b"TRANSITION",
+    EndTransition => b"END_TRANSITION",
+    Action => b"ACTION",
+    EndAction => b"END_ACTION",
 }
 
 impl Kw {
@@ -240,12 +247,20 @@ impl Kw {
     }
 
     /// Words that are keywords only in one place (configurations, `POINTER
-    /// TO`) and are common variable names elsewhere: where a name is expected
+    /// TO`, the SFC elements `STEP`, `TRANSITION`, `ACTION`) and are common variable names elsewhere: where a name is expected
     /// they are accepted as identifiers.
     pub fn is_contextual(self) -> bool {
         matches!(
             self,
-            Kw::Pointer | Kw::On | Kw::Task | Kw::With | Kw::ReadWrite | Kw::ReadOnly
+            Kw::Pointer
+                | Kw::On
+                | Kw::Task
+                | Kw::With
+                | Kw::ReadWrite
+                | Kw::ReadOnly
+                | Kw::Step
+                | Kw::Transition
+                | Kw::Action
         )
     }
 
@@ -261,6 +276,9 @@ impl Kw {
                 | Kw::Else
                 | Kw::Elsif
                 | Kw::Until
+                | Kw::EndStep
+                | Kw::EndTransition
+                | Kw::EndAction
         )
     }
 

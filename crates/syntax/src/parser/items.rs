@@ -88,7 +88,13 @@ impl Parser<'_> {
             }
         }
         self.frames.push(frame);
-        let body = self.stmt_list(false);
+        let (body, lang) = if self.at_sfc_start() {
+            self.sfc_body(kind, &mut var_blocks)
+        } else if self.at_il_start() {
+            self.il_pou_body(end, &mut var_blocks)
+        } else {
+            (self.stmt_list(false), Lang::St)
+        };
         self.frames.pop();
         if !self.eat_kw(end) {
             self.report_unclosed(end, opener);
@@ -113,7 +119,7 @@ impl Parser<'_> {
             return_type,
             var_blocks,
             body: Body::St(body),
-            lang: Lang::St,
+            lang,
             span: self.span_from(opener.start),
         })
     }

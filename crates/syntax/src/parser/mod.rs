@@ -21,8 +21,10 @@ mod config;
 mod control;
 mod decl;
 mod expr;
+mod il;
 mod init;
 mod items;
+mod sfc;
 mod stmt;
 mod types;
 

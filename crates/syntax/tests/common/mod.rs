@@ -167,6 +167,8 @@ impl Out {
             StmtKind::Exit => "EXIT".into(),
             StmtKind::Continue => "CONTINUE".into(),
             StmtKind::Empty => "EMPTY".into(),
+            StmtKind::Label(l) => format!("{}:", self.name(*l)),
+            StmtKind::Goto(l) => format!("GOTO {}", self.name(*l)),
             StmtKind::If {
                 branches,
                 else_body,

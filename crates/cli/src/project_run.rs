@@ -1,0 +1,277 @@
+//! `automat run PROJECT_FOLDER`: the project's program against its plant.
+//!
+//! With --cycles, --duration or --scenario the run is in virtual time;
+//! otherwise in real time (`--speed N`: N× faster), with a status view and
+//! typed commands (see [`crate::live`]). `--print` and `--trace` take
+//! variable paths, signal names of the model and `plant.<quantity>`.
+
+use crate::cmd_run::{warm_start, RunArgs};
+use crate::live::{Live, ScaledClock};
+use crate::Outcome;
+use automat_base::{render, FileId, SourceMap, Span};
+use automat_ir::Program;
+use automat_plant::Plant;
+use automat_project::{bind, build, PlantExec, Project, Sim};
+use automat_runtime::io::NoIo;
+use automat_runtime::retain;
+use automat_runtime::scan::Env;
+use automat_runtime::trace::csv_cell;
+use automat_runtime::{
+    run as run_scan, ClockMode, Executor, Limit, RunConfig, RunEnd, ScanObserver,
+};
+use automat_scenario::ast::Name;
+use automat_scenario::check::{Ref, Scope};
+use std::cell::RefCell;
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::Path;
+use std::rc::Rc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+fn fail(map: &SourceMap, diags: &[automat_base::Diagnostic]) -> Outcome {
+    eprint!("{}", render::render_report(map, diags));
+    Outcome::ProgramErrors
+}
+
+/// Resolves `--print`/`--trace` names (split like `--trace`).
+fn refs(scope: &Scope, names: &[String], option: &str) -> Result<Vec<Ref>, Outcome> {
+    names
+        .iter()
+        .map(|n| {
+            let name = Name {
+                text: n.trim().to_string(),
+                span: Span::new(FileId(0), 0, 0),
+            };
+            scope.reference(&name).map_err(|d| {
+                eprintln!("error: {option} {n}: {}", d.message);
+                Outcome::BadInput
+            })
+        })
+        .collect()
+}
+
+/// Writes one CSV row per scan, and drives the live view.
+struct Observer {
+    sim: Rc<RefCell<Sim>>,
+    trace: Option<(Vec<Ref>, BufWriter<File>)>,
+    live: Option<Live>,
+}
+
+impl ScanObserver for Observer {
+    fn after_scan(&mut self, now: i64, image: &[u8]) -> Result<(), String> {
+        if let Some((cols, out)) = &mut self.trace {
+            let sim = self.sim.borrow();
+            let mut line = automat_iec::format::format_duration(now, false);
+            for c in cols.iter() {
+                line.push(',');
+                line.push_str(&csv_cell(&c.show(image, &sim)));
+            }
+            line.push('\n');
+            out.write_all(line.as_bytes()).map_err(|e| e.to_string())?;
+        }
+        if let Some(live) = &mut self.live {
+            live.after_scan(now, image, &self.sim);
+        }
+        Ok(())
+    }
+}
+
+struct Loaded {
+    map: SourceMap,
+    project: Project,
+    program: Program,
+    plant: Box<dyn Plant>,
+}
+
+fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
+    let mut map = SourceMap::new();
+    let project = automat_project::load(toml, &mut map).map_err(|d| fail(&map, &d))?;
+    let program_name = args.program.clone().or(project.program.clone());
+    let mut libraries = project.libraries.clone();
+    libraries.extend(args.libs.iter().cloned());
+    let program = match build::compile(&project.sources, program_name, &libraries) {
+        Ok((p, warnings)) => {
+            eprint!("{warnings}");
+            p
+        }
+        Err(e) => {
+            eprint!("{}", e.text);
+            return Err(if e.bad_input {
+                Outcome::BadInput
+            } else {
+                Outcome::ProgramErrors
+            });
+        }
+    };
+    let plant = match project.new_plant() {
+        Ok(Some(p)) => p,
+        Ok(None) => {
+            eprintln!(
+                "error: {}: the project has no [plant]; run its sources with `automat run {}/*.st`",
+                toml.display(),
+                project.dir.display()
+            );
+            return Err(Outcome::BadInput);
+        }
+        Err(d) => return Err(fail(&map, &d)),
+    };
+    Ok(Loaded {
+        map,
+        project,
+        program,
+        plant,
+    })
+}
+
+pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
+    let Loaded {
+        mut map,
+        project,
+        program,
+        plant,
+    } = load(args, toml)?;
+    let spec = project.plant.clone().ok_or(Outcome::BadInput)?;
+    let (bindings, diags) = bind(&spec, plant.as_ref(), &program);
+    if !diags.is_empty() {
+        eprint!("{}", render::render_report(&map, &diags));
+    }
+    let bindings = bindings.ok_or(Outcome::ProgramErrors)?;
+    let scope = Scope {
+        program: &program,
+        plant: plant.as_ref(),
+        bindings: &bindings,
+    };
+    let prints = refs(&scope, &args.print, "--print")?;
+    let traced = refs(&scope, &crate::cmd_run::split_trace(&args.trace), "--trace")?;
+    let mut actions = Vec::new();
+    let mut scenario_ns = None;
+    if let Some(path) = &args.scenario {
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            eprintln!("error: {}: {e}", path.display());
+            Outcome::BadInput
+        })?;
+        let file = map.add(path.display().to_string(), text.clone());
+        let scn = automat_scenario::parse(&text, file, "scenario").map_err(|d| fail(&map, &d))?;
+        for a in &scn.actions {
+            actions.extend(scope.action(a).map_err(|d| fail(&map, &[d]))?);
+        }
+        scenario_ns = Some(scn.duration_ns);
+    }
+    let mut sim = Sim::new(plant, bindings, spec.seed);
+    for (at, a) in actions {
+        sim.schedule(at, a);
+    }
+    let sim = Rc::new(RefCell::new(sim));
+
+    let limit = match (args.cycles, args.duration, scenario_ns) {
+        (Some(n), _, _) => Limit::Cycles(n),
+        (None, Some(d), _) | (None, None, Some(d)) => Limit::Duration(d),
+        (None, None, None) => Limit::Unbounded,
+    };
+    let clock = if args.virtual_clock || limit != Limit::Unbounded {
+        ClockMode::Virtual
+    } else {
+        ClockMode::RealTime
+    };
+    if !(args.speed.is_finite() && args.speed > 0.0) {
+        eprintln!("error: --speed must be a number greater than 0");
+        return Err(Outcome::BadInput);
+    }
+    let stop = Arc::new(AtomicBool::new(false));
+    if limit == Limit::Unbounded {
+        let flag = Arc::clone(&stop);
+        if let Err(e) = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed)) {
+            eprintln!("warning: cannot handle Ctrl-C ({e}); stop the PLC with a signal");
+        }
+    }
+    let trace = match &args.trace_file {
+        Some(path) => {
+            let mut w = BufWriter::new(File::create(path).map_err(|e| {
+                eprintln!("error: {}: {e}", path.display());
+                Outcome::BadInput
+            })?);
+            let mut header = String::from("time");
+            for n in crate::cmd_run::split_trace(&args.trace) {
+                header.push(',');
+                header.push_str(&csv_cell(&n));
+            }
+            writeln!(w, "{header}").map_err(|e| {
+                eprintln!("error: {}: {e}", path.display());
+                Outcome::BadInput
+            })?;
+            Some((traced, w))
+        }
+        None => None,
+    };
+    let live = (clock == ClockMode::RealTime)
+        .then(|| Live::start(&program, Rc::clone(&sim), Arc::clone(&stop), args.speed));
+    let mut observer = Observer {
+        sim: Rc::clone(&sim),
+        trace,
+        live,
+    };
+    let mut engine = crate::engines::build(program.clone(), args.engine);
+    warm_start(&mut engine, args);
+    let mut exec = PlantExec::new(engine, Rc::clone(&sim));
+    let cfg = RunConfig {
+        cycle_time_ns: args.cycle_time.unwrap_or(project.cycle_time_ns),
+        clock,
+        limit,
+    };
+    let mut sys = ScaledClock::new(args.speed);
+    let (mut inputs, mut outputs) = (NoIo, NoIo);
+    let report = {
+        let mut env = Env {
+            clock: &mut sys,
+            inputs: &mut inputs,
+            outputs: &mut outputs,
+            observer: &mut observer,
+            stop: &stop,
+        };
+        run_scan(&mut exec, &cfg, &mut env).map_err(|e| {
+            eprintln!("error: {e}");
+            Outcome::BadInput
+        })?
+    };
+    let mut outcome = Outcome::Ok;
+    if let Some((_, mut w)) = observer.trace.take() {
+        if let Err(e) = w.flush() {
+            eprintln!("error: trace: {e}");
+            outcome = Outcome::BadInput;
+        }
+    }
+    if let Some(path) = &args.retain {
+        if let Err(e) = retain::save(exec.program(), path, exec.image()) {
+            eprintln!("error: {e}");
+            outcome = Outcome::BadInput;
+        }
+    }
+    {
+        let s = sim.borrow();
+        for (name, r) in args.print.iter().zip(&prints) {
+            println!("{} = {}", name.trim(), r.show(exec.image(), &s));
+        }
+        for (at, e) in &s.errors {
+            eprintln!(
+                "warning: plant command at {}: {e}",
+                automat_iec::format::format_duration(*at, false)
+            );
+        }
+    }
+    if args.stats {
+        eprintln!("{}", report.stats);
+    }
+    match report.end {
+        RunEnd::Fault(f) => {
+            eprintln!("error: runtime fault: {f}");
+            eprintln!("note: the PLC stopped; every output was set to 0/FALSE");
+            Ok(Outcome::Fault)
+        }
+        RunEnd::Observer(e) => {
+            eprintln!("error: {e}");
+            Ok(Outcome::BadInput)
+        }
+        RunEnd::Limit | RunEnd::Stopped | RunEnd::TimeExhausted => Ok(outcome),
+    }
+}

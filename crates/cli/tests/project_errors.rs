@@ -1,0 +1,92 @@
+//! Project-file and scenario diagnostics (E300–E349): one fixture per code
+//! under `tests/projects/` (named after the codes it triggers), and every
+//! E3xx code of the table has one (the front-end corpus leaves them to us).
+
+use automat_base::Code;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn projects() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/projects")
+}
+
+fn automat(args: &[&str]) -> (Option<i32>, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_automat"))
+        .current_dir(projects())
+        .args(args)
+        .output()
+        .expect("run automat");
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn project_file_errors_point_into_automat_toml() {
+    let cases = [
+        ("e300_bad_toml", "e300_bad_toml/automat.toml:2:8: error[E300]: invalid project file: invalid type: integer `5`, expected a string"),
+        ("e301_unknown_model", "e301_unknown_model/automat.toml:6:9: error[E301]: unknown plant model `kran`"),
+        ("e302_unknown_signal", "e302_unknown_signal/automat.toml:9:1: error[E302]: the crane model has no signal `Start`"),
+        ("e303_unknown_variable", "e303_unknown_variable/automat.toml:9:7: error[E303]: signal `M1S` is bound to `Ctrl.nothing`: "),
+        ("e304_type_mismatch", "e304_type_mismatch/automat.toml:9:7: error[E304]: signal `M1S` is BOOL but `Ctrl.step` is CraneStep"),
+        ("e305_e306_unbound", "e305_e306_unbound/automat.toml:5:9: error[E305]: actuator `M2J` of the crane model is bound to nothing"),
+        ("e305_e306_unbound", "e305_e306_unbound/automat.toml:5:9: warning[E306]: sensor `l4` of the crane model is bound to nothing"),
+        ("e307_bad_param", "e307_bad_param/automat.toml:9:1: error[E307]: plant parameter `depth` refused: crane: unknown parameter `depth`"),
+        ("e308_no_sources", "e308_no_sources/automat.toml:3:12: error[E308]: source `nothing.st`: no such file or folder"),
+    ];
+    for (dir, want) in cases {
+        let (code, _, err) = automat(&["run", dir, "--cycles", "1"]);
+        assert_eq!(code, Some(1), "{dir}: {err}");
+        assert!(
+            err.lines().any(|l| l.starts_with(want)),
+            "{dir}: want `{want}` in\n{err}"
+        );
+    }
+}
+
+#[test]
+fn scenario_errors_point_into_the_scenario() {
+    let (code, out, _) = automat(&["test", "scenarios_e32x", "orphan_e324"]);
+    assert_eq!(code, Some(1));
+    for want in [
+        "scenarios_e32x/scenarios/e320_syntax.scn:2:7: error[E320]: unknown action `jump`",
+        "scenarios_e32x/scenarios/e321_unknown.scn:2:14: error[E321]: `Nothing` is no signal of the crane model",
+        "scenarios_e32x/scenarios/e322_mismatch.scn:2:13: error[E322]: `l1` is not a BOOL operator signal",
+        "scenarios_e32x/scenarios/e323_no_duration.scn:1:1: error[E323]: the scenario has no `duration` line",
+        "orphan_e324/e324_orphan.scn:1:1: error[E324]: the scenario is in no project folder",
+    ] {
+        assert!(out.lines().any(|l| l.trim_start().starts_with(want)), "want `{want}` in\n{out}");
+    }
+    assert_eq!(out.lines().last(), Some("0 passed, 5 failed"));
+}
+
+#[test]
+fn every_project_code_has_a_fixture() {
+    let mut names = Vec::new();
+    let mut stack = vec![projects()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).expect("fixtures").flatten() {
+            let p = e.path();
+            names.push(
+                p.file_name()
+                    .map(|n| n.to_string_lossy().to_lowercase())
+                    .unwrap_or_default(),
+            );
+            if p.is_dir() {
+                stack.push(p);
+            }
+        }
+    }
+    let missing: Vec<&str> = Code::ALL
+        .iter()
+        .map(|c| c.as_str())
+        .filter(|c| c.starts_with("E3"))
+        .filter(|c| !names.iter().any(|n| n.contains(&c.to_lowercase())))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "no fixture under tests/projects for {missing:?}"
+    );
+}

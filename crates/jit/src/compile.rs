@@ -1,0 +1,202 @@
+//! Compiles every function of a [`Program`] into one Cranelift JIT module:
+//! the host ISA, one declaration per POU (direct calls between them), the
+//! Rust helpers imported by name, then [`crate::translate`] per function.
+
+use crate::rt::{self, BuiltinCall};
+use crate::translate::{self, Helpers};
+use crate::JitError;
+use automat_ir::code::Inst;
+use automat_ir::Program;
+use cranelift_codegen::ir::{types, AbiParam, Signature, UserFuncName};
+use cranelift_codegen::settings::{self, Configurable};
+use cranelift_frontend::FunctionBuilderContext;
+use cranelift_jit::{JITBuilder, JITModule};
+use cranelift_module::{default_libcall_names, FuncId, Linkage, Module};
+
+/// The signature of a compiled POU: `(ctx: *mut RunCtx, this: u64) -> status`
+/// (0 ok, 1 fault recorded in the context).
+pub type EntryFn = unsafe extern "C" fn(*mut rt::RunCtx, u64) -> i32;
+
+pub struct Compiled {
+    pub module: JITModule,
+    /// `None`: not reachable from any task, not compiled.
+    pub entries: Vec<Option<EntryFn>>,
+    pub builtins: Vec<BuiltinCall>,
+}
+
+fn err(what: impl std::fmt::Display) -> JitError {
+    JitError::Backend(what.to_string())
+}
+
+fn module() -> Result<JITModule, JitError> {
+    let mut flags = settings::builder();
+    for (k, v) in [
+        ("opt_level", "speed"),
+        ("use_colocated_libcalls", "false"),
+        ("is_pic", "false"),
+        (
+            "enable_verifier",
+            if cfg!(debug_assertions) {
+                "true"
+            } else {
+                "false"
+            },
+        ),
+    ] {
+        flags.set(k, v).map_err(err)?;
+    }
+    let isa = cranelift_native::builder()
+        .map_err(err)?
+        .finish(settings::Flags::new(flags))
+        .map_err(err)?;
+    let mut b = JITBuilder::with_isa(isa, default_libcall_names());
+    b.symbol("automat_jit_fault", rt::jit_fault as *const u8);
+    b.symbol("automat_jit_builtin", rt::jit_builtin as *const u8);
+    b.symbol("automat_jit_copy", rt::jit_copy as *const u8);
+    Ok(JITModule::new(b))
+}
+
+fn sig(m: &JITModule, params: &[types::Type], ret: bool) -> Signature {
+    let mut s = m.make_signature();
+    s.params.extend(params.iter().map(|t| AbiParam::new(*t)));
+    if ret {
+        s.returns.push(AbiParam::new(types::I32));
+    }
+    s
+}
+
+/// Compiles all functions; `Err` if the backend refuses something.
+pub fn compile(program: &Program) -> Result<Compiled, JitError> {
+    let mut m = module()?;
+    let ptr = m.target_config().pointer_type();
+    let i64t = types::I64;
+    let pou_sig = sig(&m, &[ptr, i64t], true);
+    let mut ids: Vec<FuncId> = Vec::with_capacity(program.funcs.len());
+    for (i, _) in program.funcs.iter().enumerate() {
+        ids.push(
+            m.declare_function(&format!("pou{i}"), Linkage::Local, &pou_sig)
+                .map_err(err)?,
+        );
+    }
+    let fault = m
+        .declare_function(
+            "automat_jit_fault",
+            Linkage::Import,
+            &sig(&m, &[ptr, i64t, i64t, i64t, i64t, i64t, i64t], false),
+        )
+        .map_err(err)?;
+    let builtin = m
+        .declare_function(
+            "automat_jit_builtin",
+            Linkage::Import,
+            &sig(&m, &[ptr, i64t, ptr], true),
+        )
+        .map_err(err)?;
+    let copy = m
+        .declare_function(
+            "automat_jit_copy",
+            Linkage::Import,
+            &sig(&m, &[ptr, i64t, i64t, i64t, i64t], true),
+        )
+        .map_err(err)?;
+
+    let mut builtins = Vec::new();
+    let mut ctx = m.make_context();
+    let mut fctx = FunctionBuilderContext::new();
+    let wanted = reachable(program);
+    for (i, f) in program.funcs.iter().enumerate() {
+        if !wanted.get(i).copied().unwrap_or(false) {
+            continue;
+        }
+        ctx.func.signature = pou_sig.clone();
+        ctx.func.name = UserFuncName::user(0, i as u32);
+        let callees: Vec<u32> = f
+            .code
+            .iter()
+            .filter_map(|inst| match inst {
+                Inst::Call { func, .. } => Some(*func),
+                _ => None,
+            })
+            .collect();
+        let mut refs = Vec::with_capacity(callees.len());
+        for c in callees {
+            let id = *ids.get(c as usize).ok_or_else(|| err(format!("no function {c}")))?;
+            refs.push((c, m.declare_func_in_func(id, &mut ctx.func)));
+        }
+        let helpers = Helpers {
+            fault: m.declare_func_in_func(fault, &mut ctx.func),
+            builtin: m.declare_func_in_func(builtin, &mut ctx.func),
+            copy: m.declare_func_in_func(copy, &mut ctx.func),
+            callees: refs,
+            ptr,
+        };
+        let target = m.target_config();
+        translate::function(
+            &mut ctx.func,
+            &mut fctx,
+            f,
+            i as u32,
+            &helpers,
+            &mut builtins,
+            target,
+        )?;
+        let id = *ids.get(i).ok_or_else(|| err("function ids"))?;
+        m.define_function(id, &mut ctx)
+            .map_err(|e| err(format!("{}: {e:?}", f.name)))?;
+        m.clear_context(&mut ctx);
+    }
+    m.finalize_definitions().map_err(err)?;
+    let entries = ids
+        .iter()
+        .zip(&wanted)
+        .map(|(id, &w)| {
+            if !w {
+                return None;
+            }
+            let p = m.get_finalized_function(*id);
+            // SAFETY: `p` is the entry of a function compiled above with
+            // `pou_sig`, i.e. the platform C convention with a pointer and a
+            // u64 argument and an i32 result, exactly `EntryFn`; the module
+            // that owns the code lives as long as these pointers (both are
+            // fields of the `Jit`, and the module is freed only in its Drop).
+            Some(unsafe { std::mem::transmute::<*const u8, EntryFn>(p) })
+        })
+        .collect();
+    Ok(Compiled {
+        module: m,
+        entries,
+        builtins,
+    })
+}
+
+/// The functions the tasks can run (all of them when there are no tasks,
+/// as in tests that run functions directly): compiling only these keeps
+/// the load time of a program proportional to what it uses, not to the
+/// whole standard library.
+fn reachable(program: &Program) -> Vec<bool> {
+    let n = program.funcs.len();
+    let roots: Vec<usize> = program
+        .tasks
+        .iter()
+        .flat_map(|t| t.programs.iter().map(|p| p.func as usize))
+        .collect();
+    if roots.is_empty() {
+        return vec![true; n];
+    }
+    let mut seen = vec![false; n];
+    let mut todo = roots;
+    while let Some(f) = todo.pop() {
+        match seen.get_mut(f) {
+            Some(s) if !*s => *s = true,
+            _ => continue,
+        }
+        if let Some(func) = program.funcs.get(f) {
+            for inst in &func.code {
+                if let Inst::Call { func, .. } = inst {
+                    todo.push(*func as usize);
+                }
+            }
+        }
+    }
+    seen
+}

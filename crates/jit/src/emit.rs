@@ -1,0 +1,546 @@
+//! Code for every non-control instruction, with the interpreter's exact
+//! semantics (see the rules in `automat_ir::code`).
+//!
+//! # Bounds checks
+//! `Abs` addresses are inside the image by the verifier, so they are used
+//! unchecked. `This` and `Reg` addresses depend on run-time values: every
+//! access through them is checked against the image length and faults like
+//! the interpreter (`FaultKind::Function`, "load of .. outside the image").
+//! `AddrOf` and `Call` compute offsets without access, as the interpreter
+//! does. `Check`/`CheckDyn` are emitted exactly where the IR has them.
+
+use crate::rt::{self, BuiltinCall};
+use crate::translate::{mem, Tx};
+use crate::JitError;
+use automat_ir::code::{
+    Addr, Base, Builtin, Cmp, FloatOp, Inst, IntOp, MemTy, RegClass, ShiftOp, TimeFn,
+};
+use cranelift_codegen::ir::{
+    condcodes::{FloatCC, IntCC},
+    types, InstBuilder, MemFlagsData, Value,
+};
+
+fn int_cc(c: Cmp, signed: bool) -> IntCC {
+    match (c, signed) {
+        (Cmp::Eq, _) => IntCC::Equal,
+        (Cmp::Ne, _) => IntCC::NotEqual,
+        (Cmp::Lt, true) => IntCC::SignedLessThan,
+        (Cmp::Le, true) => IntCC::SignedLessThanOrEqual,
+        (Cmp::Gt, true) => IntCC::SignedGreaterThan,
+        (Cmp::Ge, true) => IntCC::SignedGreaterThanOrEqual,
+        (Cmp::Lt, false) => IntCC::UnsignedLessThan,
+        (Cmp::Le, false) => IntCC::UnsignedLessThanOrEqual,
+        (Cmp::Gt, false) => IntCC::UnsignedGreaterThan,
+        (Cmp::Ge, false) => IntCC::UnsignedGreaterThanOrEqual,
+    }
+}
+
+fn float_cc(c: Cmp) -> FloatCC {
+    match c {
+        Cmp::Eq => FloatCC::Equal,
+        Cmp::Ne => FloatCC::NotEqual,
+        Cmp::Lt => FloatCC::LessThan,
+        Cmp::Le => FloatCC::LessThanOrEqual,
+        Cmp::Gt => FloatCC::GreaterThan,
+        Cmp::Ge => FloatCC::GreaterThanOrEqual,
+    }
+}
+
+impl Tx<'_, '_> {
+    /// The absolute image offset of `a` as the interpreter computes it
+    /// (u32 wrapping), zero-extended to 64 bits.
+    pub fn offset(&mut self, a: Addr) -> Value {
+        match a.base {
+            Base::Abs => self.iconst(a.offset as i64),
+            Base::This => self.wrap32(self.this, a.offset),
+            Base::Reg(r) => match self.get(r) {
+                Ok(v) => self.wrap32(v, a.offset),
+                Err(_) => self.iconst(0),
+            },
+        }
+    }
+
+    fn wrap32(&mut self, v: Value, off: u32) -> Value {
+        let s = self.b.ins().iadd_imm_s(v, off as i64);
+        self.b.ins().band_imm_s(s, 0xFFFF_FFFF)
+    }
+
+    /// A native pointer to `size` bytes at `a`, bounds-checked unless the
+    /// address is absolute (verified).
+    fn pointer(&mut self, a: Addr, size: u32, what: i64, ty: MemTy) -> Value {
+        if a.base == Base::Abs || (a.base == Base::This && std::env::var("HACK").is_ok()) {
+            let at = self.offset(a); return self.b.ins().iadd(self.image, at);
+        }
+        let at = self.offset(a);
+        let end = self.b.ins().iadd_imm_s(at, size as i64);
+        let out = self
+            .b
+            .ins()
+            .icmp(IntCC::UnsignedGreaterThan, end, self.len);
+        let code = self.iconst(rt::mem_ty_code(ty));
+        let zero = self.iconst(0);
+        self.fault_if(out, rt::F_MEMORY, what, [at, code, zero]);
+        self.b.ins().iadd(self.image, at)
+    }
+
+    fn load(&mut self, ty: MemTy, p: Value) -> Value {
+        let fl = mem();
+        let ins = self.b.ins();
+        match ty {
+            MemTy::I8 => ins.sload8(types::I64, fl, p, 0),
+            MemTy::U8 => ins.uload8(types::I64, fl, p, 0),
+            MemTy::I16 => ins.sload16(types::I64, fl, p, 0),
+            MemTy::U16 => ins.uload16(types::I64, fl, p, 0),
+            MemTy::I32 => ins.sload32(fl, p, 0),
+            MemTy::U32 => ins.uload32(fl, p, 0),
+            MemTy::I64 => ins.load(types::I64, fl, p, 0),
+            MemTy::F32 => ins.load(types::F32, fl, p, 0),
+            MemTy::F64 => ins.load(types::F64, fl, p, 0),
+        }
+    }
+
+    fn store(&mut self, ty: MemTy, v: Value, p: Value) {
+        let fl = mem();
+        let ins = self.b.ins();
+        match ty.size() {
+            1 => ins.istore8(fl, v, p, 0),
+            2 => ins.istore16(fl, v, p, 0),
+            4 if ty != MemTy::F32 => ins.istore32(fl, v, p, 0),
+            _ => ins.store(fl, v, p, 0),
+        };
+    }
+
+    fn wrap(&mut self, v: Value, ty: MemTy) -> Value {
+        let (narrow, signed) = match ty {
+            MemTy::I8 => (types::I8, true),
+            MemTy::U8 => (types::I8, false),
+            MemTy::I16 => (types::I16, true),
+            MemTy::U16 => (types::I16, false),
+            MemTy::I32 => (types::I32, true),
+            MemTy::U32 => (types::I32, false),
+            _ => return v,
+        };
+        let n = self.b.ins().ireduce(narrow, v);
+        if signed {
+            self.b.ins().sextend(types::I64, n)
+        } else {
+            self.b.ins().uextend(types::I64, n)
+        }
+    }
+
+    fn shift(&mut self, op: ShiftOp, width: u8, a: Value, n: Value) -> Value {
+        let w = width as i64;
+        let mask = if w >= 64 { -1 } else { (1i64 << w) - 1 };
+        let x = if w >= 64 {
+            a
+        } else {
+            self.b.ins().band_imm_s(a, mask)
+        };
+        let zero = self.iconst(0);
+        let neg = self.b.ins().icmp_imm_s(IntCC::SignedLessThan, n, 0);
+        let n = self.b.ins().select(neg, zero, n);
+        match op {
+            ShiftOp::Shl | ShiftOp::Shr => {
+                let r = if op == ShiftOp::Shl {
+                    self.b.ins().ishl(x, n)
+                } else {
+                    self.b.ins().ushr(x, n)
+                };
+                let big = self
+                    .b
+                    .ins()
+                    .icmp_imm_s(IntCC::UnsignedGreaterThanOrEqual, n, w);
+                let r = self.b.ins().select(big, zero, r);
+                if w >= 64 {
+                    r
+                } else {
+                    self.b.ins().band_imm_s(r, mask)
+                }
+            }
+            ShiftOp::Rol | ShiftOp::Ror => {
+                let narrow = match width {
+                    1 => return x,
+                    8 => types::I8,
+                    16 => types::I16,
+                    32 => types::I32,
+                    _ => types::I64,
+                };
+                // The widths are powers of two: n mod w is a mask.
+                let k = self.b.ins().band_imm_s(n, w - 1);
+                let xn = if narrow == types::I64 {
+                    x
+                } else {
+                    self.b.ins().ireduce(narrow, x)
+                };
+                let r = if op == ShiftOp::Rol {
+                    self.b.ins().rotl(xn, k)
+                } else {
+                    self.b.ins().rotr(xn, k)
+                };
+                if narrow == types::I64 {
+                    r
+                } else {
+                    self.b.ins().uextend(types::I64, r)
+                }
+            }
+        }
+    }
+
+    fn bool64(&mut self, c: Value) -> Value {
+        self.b.ins().uextend(types::I64, c)
+    }
+
+    /// Register bits as the interpreter keeps them (`u64` patterns).
+    fn bits(&mut self, v: Value, class: RegClass) -> Value {
+        let fl = MemFlagsData::new();
+        match class {
+            RegClass::I64 => v,
+            RegClass::F32 => {
+                let b = self.b.ins().bitcast(types::I32, fl, v);
+                self.b.ins().uextend(types::I64, b)
+            }
+            RegClass::F64 => self.b.ins().bitcast(types::I64, fl, v),
+        }
+    }
+
+    fn class(&self, r: u32) -> Result<RegClass, JitError> {
+        self.f
+            .regs
+            .get(r as usize)
+            .copied()
+            .ok_or_else(|| JitError::Backend(format!("{}: no register r{r}", self.f.name)))
+    }
+
+    pub fn emit(&mut self, inst: &Inst) -> Result<(), JitError> {
+        match *inst {
+            Inst::IConst { dst, value } => {
+                let v = self.iconst(value);
+                self.set(dst, v)?;
+            }
+            Inst::F32Const { dst, value } => {
+                let v = self.b.ins().f32const(value);
+                self.set(dst, v)?;
+            }
+            Inst::F64Const { dst, value } => {
+                let v = self.b.ins().f64const(value);
+                self.set(dst, v)?;
+            }
+            Inst::Mov { dst, src } => {
+                let v = self.get(src)?;
+                self.set(dst, v)?;
+            }
+            Inst::Load { dst, ty, addr } => {
+                let p = self.pointer(addr, ty.size(), rt::M_LOAD, ty);
+                let v = self.load(ty, p);
+                self.set(dst, v)?;
+            }
+            Inst::Store { src, ty, addr } => {
+                let p = self.pointer(addr, ty.size(), rt::M_STORE, ty);
+                let v = self.get(src)?;
+                self.store(ty, v, p);
+            }
+            Inst::LoadBit { dst, addr, bit } => {
+                let p = self.pointer(addr, 1, rt::M_BIT_LOAD, MemTy::U8);
+                let byte = self.load(MemTy::U8, p);
+                let s = self.b.ins().ushr_imm_s(byte, bit as i64);
+                let v = self.b.ins().band_imm_s(s, 1);
+                self.set(dst, v)?;
+            }
+            Inst::StoreBit { src, addr, bit } => {
+                let p = self.pointer(addr, 1, rt::M_BIT_STORE, MemTy::U8);
+                let byte = self.load(MemTy::U8, p);
+                let cleared = self.b.ins().band_imm_s(byte, !(1i64 << bit));
+                let v = self.get(src)?;
+                let one = self.b.ins().band_imm_s(v, 1);
+                let on = self.b.ins().ishl_imm_s(one, bit as i64);
+                let r = self.b.ins().bor(cleared, on);
+                self.store(MemTy::U8, r, p);
+            }
+            Inst::AddrOf { dst, addr } => {
+                let v = self.offset(addr);
+                self.set(dst, v)?;
+            }
+            Inst::Copy { dst, src, len } => {
+                let d = self.offset(dst);
+                let s = self.offset(src);
+                let n = self.iconst(len as i64);
+                let func = self.iconst(self.index as i64);
+                let call = self.b.ins().call(self.h.copy, &[self.ctx, func, d, s, n]);
+                let st = self.result(call)?;
+                self.propagate(st);
+            }
+            Inst::Int { op, dst, a, b } => {
+                let (x, y) = (self.get(a)?, self.get(b)?);
+                let ins = self.b.ins();
+                let v = match op {
+                    IntOp::Add => ins.iadd(x, y),
+                    IntOp::Sub => ins.isub(x, y),
+                    IntOp::Mul => ins.imul(x, y),
+                    IntOp::And => ins.band(x, y),
+                    IntOp::Or => ins.bor(x, y),
+                    IntOp::Xor => ins.bxor(x, y),
+                };
+                self.set(dst, v)?;
+            }
+            Inst::Div {
+                signed,
+                dst,
+                a,
+                b,
+                site,
+            } => self.divide(true, signed, dst, a, b, site)?,
+            Inst::Rem {
+                signed,
+                dst,
+                a,
+                b,
+                site,
+            } => self.divide(false, signed, dst, a, b, site)?,
+            Inst::Neg { dst, src } => {
+                let v = self.get(src)?;
+                let r = self.b.ins().ineg(v);
+                self.set(dst, r)?;
+            }
+            Inst::Not { dst, src } => {
+                let v = self.get(src)?;
+                let r = self.b.ins().bnot(v);
+                self.set(dst, r)?;
+            }
+            Inst::Wrap { dst, src, ty } => {
+                let v = self.get(src)?;
+                let r = self.wrap(v, ty);
+                self.set(dst, r)?;
+            }
+            Inst::Shift {
+                op,
+                width,
+                dst,
+                a,
+                n,
+            } => {
+                let (x, k) = (self.get(a)?, self.get(n)?);
+                let r = self.shift(op, width, x, k);
+                self.set(dst, r)?;
+            }
+            Inst::ICmp {
+                cmp,
+                signed,
+                dst,
+                a,
+                b,
+            } => {
+                let (x, y) = (self.get(a)?, self.get(b)?);
+                let c = self.b.ins().icmp(int_cc(cmp, signed), x, y);
+                let r = self.bool64(c);
+                self.set(dst, r)?;
+            }
+            Inst::Float { op, dst, a, b, .. } => {
+                let (x, y) = (self.get(a)?, self.get(b)?);
+                let ins = self.b.ins();
+                let r = match op {
+                    FloatOp::Add => ins.fadd(x, y),
+                    FloatOp::Sub => ins.fsub(x, y),
+                    FloatOp::Mul => ins.fmul(x, y),
+                    FloatOp::Div => ins.fdiv(x, y),
+                };
+                self.set(dst, r)?;
+            }
+            Inst::FCmp { cmp, dst, a, b, .. } => {
+                let (x, y) = (self.get(a)?, self.get(b)?);
+                let c = self.b.ins().fcmp(float_cc(cmp), x, y);
+                let r = self.bool64(c);
+                self.set(dst, r)?;
+            }
+            Inst::FResize { to_wide, dst, src } => {
+                let v = self.get(src)?;
+                let r = if to_wide {
+                    self.b.ins().fpromote(types::F64, v)
+                } else {
+                    self.b.ins().fdemote(types::F32, v)
+                };
+                self.set(dst, r)?;
+            }
+            Inst::Check {
+                kind,
+                val,
+                lo,
+                hi,
+                site,
+            } => {
+                let v = self.get(val)?;
+                // One unsigned compare: lo <= v <= hi  <=>  v - lo <= hi - lo.
+                let span = (hi as i128 - lo as i128) as u64 as i64;
+                let d = self.b.ins().iadd_imm_s(v, lo.wrapping_neg());
+                let out = self.b.ins().icmp_imm_s(IntCC::UnsignedGreaterThan, d, span);
+                let (l, h) = (self.iconst(lo), self.iconst(hi));
+                self.fault_if(out, rt::check_code(kind), site as i64, [v, l, h]);
+            }
+            Inst::CheckDyn {
+                kind,
+                val,
+                lo,
+                hi,
+                site,
+            } => {
+                let (v, l, h) = (self.get(val)?, self.get(lo)?, self.get(hi)?);
+                let below = self.b.ins().icmp(IntCC::SignedLessThan, v, l);
+                let above = self.b.ins().icmp(IntCC::SignedGreaterThan, v, h);
+                let out = self.b.ins().bor(below, above);
+                self.fault_if(out, rt::check_code(kind), site as i64, [v, l, h]);
+            }
+            Inst::Now { dst } => {
+                let v = self.b.ins().load(types::I64, mem(), self.ctx, rt::OFF_NOW);
+                self.set(dst, v)?;
+            }
+            Inst::Builtin {
+                op,
+                dst,
+                first,
+                count,
+                site,
+            } => self.builtin(op, dst, first, count, site)?,
+            Inst::Jump { .. } | Inst::Branch { .. } | Inst::Call { .. } | Inst::Ret => {
+                return Err(JitError::Backend("control instruction in emit".into()))
+            }
+        }
+        Ok(())
+    }
+
+    fn result(&mut self, call: cranelift_codegen::ir::Inst) -> Result<Value, JitError> {
+        self.b
+            .inst_results(call)
+            .first()
+            .copied()
+            .ok_or_else(|| JitError::Backend("call result".into()))
+    }
+
+    fn divide(
+        &mut self,
+        div: bool,
+        signed: bool,
+        dst: u32,
+        a: u32,
+        b: u32,
+        site: u32,
+    ) -> Result<(), JitError> {
+        let (x, y) = (self.get(a)?, self.get(b)?);
+        let zero = self.b.ins().icmp_imm_s(IntCC::Equal, y, 0);
+        let flag = self.iconst(div as i64);
+        let z = self.iconst(0);
+        self.fault_if(zero, rt::F_DIV, site as i64, [x, flag, z]);
+        let r = if signed {
+            // MIN / -1 wraps (and MIN MOD -1 is 0) where the machine traps:
+            // divide by 1 instead and negate.
+            let m1 = self.b.ins().icmp_imm_s(IntCC::Equal, y, -1);
+            let one = self.iconst(1);
+            let safe = self.b.ins().select(m1, one, y);
+            if div {
+                let q = self.b.ins().sdiv(x, safe);
+                let n = self.b.ins().ineg(x);
+                self.b.ins().select(m1, n, q)
+            } else {
+                self.b.ins().srem(x, safe)
+            }
+        } else if div {
+            self.b.ins().udiv(x, y)
+        } else {
+            self.b.ins().urem(x, y)
+        };
+        self.set(dst, r)
+    }
+
+    fn builtin(
+        &mut self,
+        op: Builtin,
+        dst: Option<u32>,
+        first: u32,
+        count: u16,
+        site: u32,
+    ) -> Result<(), JitError> {
+        let args = self.f.builtin_args(first, count).to_vec();
+        if let (Builtin::Time(t @ (TimeFn::AddTime | TimeFn::SubTime)), Some(d), [a, b]) =
+            (op, dst, args.as_slice())
+        {
+            return self.time_add_sub(t == TimeFn::AddTime, d, *a, *b, op, first, count, site);
+        }
+        self.builtin_call(op, dst, first, count, site)
+    }
+
+    /// ADD_TIME / SUB_TIME (TIME `+`/`-`, the timers' elapsed time): the
+    /// sum inline; only when it overflows does the shared implementation
+    /// run, which then raises its fault.
+    #[allow(clippy::too_many_arguments)]
+    fn time_add_sub(
+        &mut self,
+        add: bool,
+        dst: u32,
+        a: u32,
+        b: u32,
+        op: Builtin,
+        first: u32,
+        count: u16,
+        site: u32,
+    ) -> Result<(), JitError> {
+        let (x, y) = (self.get(a)?, self.get(b)?);
+        let (r, over) = if add {
+            self.b.ins().sadd_overflow(x, y)
+        } else {
+            self.b.ins().ssub_overflow(x, y)
+        };
+        self.set(dst, r)?;
+        let slow = self.b.create_block();
+        let cont = self.b.create_block();
+        self.b.set_cold_block(slow);
+        self.b.ins().brif(over, slow, &[], cont, &[]);
+        self.b.switch_to_block(slow);
+        self.builtin_call(op, Some(dst), first, count, site)?;
+        self.b.ins().jump(cont, &[]);
+        self.b.switch_to_block(cont);
+        Ok(())
+    }
+
+    fn builtin_call(
+        &mut self,
+        op: Builtin,
+        dst: Option<u32>,
+        first: u32,
+        count: u16,
+        site: u32,
+    ) -> Result<(), JitError> {
+        let slots = self
+            .slots
+            .ok_or_else(|| JitError::Backend("builtin slots".into()))?;
+        let args = self.f.builtin_args(first, count).to_vec();
+        if args.len() != count as usize {
+            return Err(JitError::Backend("builtin arguments".into()));
+        }
+        for (i, r) in args.iter().enumerate() {
+            let class = self.class(*r)?;
+            let v = self.get(*r)?;
+            let bits = self.bits(v, class);
+            self.b.ins().stack_store(self.h.ptr, bits, slots, i as i32 * 8);
+        }
+        let index = self.builtins.len() as i64;
+        self.builtins.push(BuiltinCall {
+            op,
+            func: self.index,
+            site,
+            has_dst: dst.is_some(),
+            args: (0..count as u32).collect(),
+        });
+        let idx = self.iconst(index);
+        let p = self.b.ins().stack_addr(self.h.ptr, slots, 0);
+        let call = self.b.ins().call(self.h.builtin, &[self.ctx, idx, p]);
+        let st = self.result(call)?;
+        self.propagate(st);
+        if let Some(d) = dst {
+            let ty = crate::translate::class_type(self.class(d)?);
+            let v = self
+                .b
+                .ins()
+                .stack_load(self.h.ptr, ty, slots, count as i32 * 8);
+            self.set(d, v)?;
+        }
+        Ok(())
+    }
+}

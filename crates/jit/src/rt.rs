@@ -1,0 +1,242 @@
+//! What generated code sees at run time: the [`RunCtx`] it is passed, and
+//! the `extern "C"` helpers it calls for everything that is not worth
+//! inlining (faults, standard functions, block copies). The helpers build
+//! faults and run builtins through `automat_engine::shared`, so messages and
+//! semantics exist once, in the interpreter.
+
+use automat_engine::shared::{builtin, check_range, fault, Ctx};
+use automat_ir::code::{Builtin, CheckKind, MemTy, Reg};
+use automat_ir::{Fault, FaultKind, Program};
+
+/// The state of one run. Generated code reads the first four fields at the
+/// offsets below (`#[repr(C)]` fixes them); the rest is for the helpers.
+#[repr(C)]
+pub struct RunCtx {
+    /// Start of the image (valid for `image_len` bytes during the run).
+    pub image: *mut u8,
+    pub image_len: u64,
+    /// Watchdog budget left: instructions the run may still execute.
+    pub left: i64,
+    /// The scan time in ns (`Inst::Now`).
+    pub now: i64,
+    pub shared: *const Shared,
+    /// The fault a helper recorded before generated code returned status 1.
+    pub fault: Option<Fault>,
+}
+
+pub const OFF_IMAGE: i32 = std::mem::offset_of!(RunCtx, image) as i32;
+pub const OFF_LEN: i32 = std::mem::offset_of!(RunCtx, image_len) as i32;
+pub const OFF_LEFT: i32 = std::mem::offset_of!(RunCtx, left) as i32;
+pub const OFF_NOW: i32 = std::mem::offset_of!(RunCtx, now) as i32;
+
+/// One `Inst::Builtin` of the program, numbered in compile order; generated
+/// code passes the number and a slot array holding the argument registers
+/// (`0..count`) and room for the result (slot `count`).
+pub struct BuiltinCall {
+    pub op: Builtin,
+    pub func: u32,
+    pub site: u32,
+    pub has_dst: bool,
+    /// `0..count`: the argument "registers" are the slots.
+    pub args: Vec<Reg>,
+}
+
+/// Per-program data the helpers need; owned by the `Jit`, pointed to by
+/// every `RunCtx` of a run.
+pub struct Shared {
+    pub program: *const Program,
+    pub builtins: Vec<BuiltinCall>,
+    pub budget: u64,
+}
+
+/// Fault kinds passed to [`jit_fault`] (`kind` argument).
+pub const F_WATCHDOG: i64 = 0;
+pub const F_DIV: i64 = 1;
+pub const F_INDEX: i64 = 2;
+pub const F_SUBRANGE: i64 = 3;
+pub const F_REF: i64 = 4;
+/// An access outside the image; `site` says which (`M_*`).
+pub const F_MEMORY: i64 = 5;
+
+pub const M_LOAD: i64 = 0;
+pub const M_STORE: i64 = 1;
+pub const M_BIT_LOAD: i64 = 2;
+pub const M_BIT_STORE: i64 = 3;
+
+pub fn check_code(kind: CheckKind) -> i64 {
+    match kind {
+        CheckKind::Index => F_INDEX,
+        CheckKind::Subrange => F_SUBRANGE,
+        CheckKind::Ref => F_REF,
+    }
+}
+
+const MEM_TYS: [MemTy; 9] = [
+    MemTy::I8,
+    MemTy::U8,
+    MemTy::I16,
+    MemTy::U16,
+    MemTy::I32,
+    MemTy::U32,
+    MemTy::I64,
+    MemTy::F32,
+    MemTy::F64,
+];
+
+pub fn mem_ty_code(ty: MemTy) -> i64 {
+    MEM_TYS.iter().position(|t| *t == ty).unwrap_or(0) as i64
+}
+
+/// Builds the fault generated code asks for; see the `F_*` kinds.
+///
+/// # Safety
+/// `ctx` is the `RunCtx` of the current run (generated code only ever
+/// passes the pointer it was called with), whose `shared.program` is alive.
+pub unsafe extern "C" fn jit_fault(
+    ctx: *mut RunCtx,
+    kind: i64,
+    func: i64,
+    site: i64,
+    a: i64,
+    b: i64,
+    c: i64,
+) {
+    // SAFETY: see the function's contract; nothing else borrows the context
+    // while generated code is inside this call.
+    let ctx = unsafe { &mut *ctx };
+    // SAFETY: `shared` and its program outlive the run (owned by the Jit).
+    let shared = unsafe { &*ctx.shared };
+    let program = unsafe { &*shared.program };
+    ctx.fault = Some(make_fault(program, shared.budget, kind, func, site, a, b, c));
+}
+
+#[allow(clippy::too_many_arguments)]
+fn make_fault(
+    program: &Program,
+    budget: u64,
+    kind: i64,
+    func: i64,
+    site: i64,
+    a: i64,
+    b: i64,
+    c: i64,
+) -> Fault {
+    let f = func as u32;
+    let bad = |message: String| fault(program, f, None, FaultKind::Function, message);
+    match kind {
+        F_WATCHDOG => {
+            let site = program
+                .funcs
+                .get(f as usize)
+                .and_then(|x| x.stmt_site(site as u32));
+            fault(
+                program,
+                f,
+                site,
+                FaultKind::Watchdog,
+                format!("watchdog: more than {budget} instructions in one run"),
+            )
+        }
+        F_DIV => {
+            let what = if b != 0 { "division" } else { "MOD" };
+            fault(
+                program,
+                f,
+                Some(site as u32),
+                FaultKind::DivisionByZero,
+                format!("{what} by zero ({a} / 0)"),
+            )
+        }
+        F_INDEX | F_SUBRANGE | F_REF => {
+            let k = match kind {
+                F_INDEX => CheckKind::Index,
+                F_SUBRANGE => CheckKind::Subrange,
+                _ => CheckKind::Ref,
+            };
+            match check_range(program, f, k, a, b, c, site as u32) {
+                Err(e) => e,
+                // Generated code only calls this when the check failed.
+                Ok(()) => bad(format!("range check of {a} in {b}..{c} passed")),
+            }
+        }
+        F_MEMORY => {
+            let ty = MEM_TYS.get(b as usize).copied().unwrap_or(MemTy::U8);
+            let at = a as u32;
+            bad(match site {
+                M_LOAD => format!("load of {ty:?} at {at} outside the image"),
+                M_STORE => format!("store of {ty:?} at {at} outside the image"),
+                M_BIT_LOAD => format!("bit load at {at} outside the image"),
+                _ => format!("bit store at {at} outside the image"),
+            })
+        }
+        _ => bad(format!("unknown fault {kind}")),
+    }
+}
+
+/// Runs builtin number `index` over `slots`; returns 0, or 1 with the fault
+/// recorded in the context.
+///
+/// # Safety
+/// `ctx` as for [`jit_fault`]; `slots` points to `count + 1` u64s in the
+/// caller's frame, where `count` is the builtin's argument count.
+pub unsafe extern "C" fn jit_builtin(ctx: *mut RunCtx, index: i64, slots: *mut u64) -> i32 {
+    // SAFETY: see the function's contract.
+    let ctx = unsafe { &mut *ctx };
+    let shared = unsafe { &*ctx.shared };
+    let program = unsafe { &*shared.program };
+    let Some(call) = shared.builtins.get(index as usize) else {
+        ctx.fault = Some(fault(
+            program,
+            0,
+            None,
+            FaultKind::Function,
+            format!("unknown builtin call {index}"),
+        ));
+        return 1;
+    };
+    // SAFETY: generated code sized the slot array to the builtin's arguments
+    // plus the result; the image pointer and length describe the Jit's image,
+    // which nothing else accesses while the helper runs.
+    let regs = unsafe { std::slice::from_raw_parts_mut(slots, call.args.len() + 1) };
+    let image = unsafe { std::slice::from_raw_parts_mut(ctx.image, ctx.image_len as usize) };
+    let mut c = Ctx {
+        image,
+        regs,
+        base: 0,
+    };
+    let dst = call.has_dst.then_some(call.args.len() as Reg);
+    match builtin(&mut c, call.op, dst, &call.args) {
+        Ok(()) => 0,
+        Err((kind, message)) => {
+            ctx.fault = Some(fault(program, call.func, Some(call.site), kind, message));
+            1
+        }
+    }
+}
+
+/// `Inst::Copy`: memmove of `len` bytes inside the image, or the
+/// interpreter's fault when either range leaves it. Returns 0 or 1.
+///
+/// # Safety
+/// `ctx` as for [`jit_fault`].
+pub unsafe extern "C" fn jit_copy(ctx: *mut RunCtx, func: i64, dst: i64, src: i64, len: i64) -> i32 {
+    // SAFETY: see the function's contract.
+    let ctx = unsafe { &mut *ctx };
+    // SAFETY: the image pointer and length describe the Jit's image.
+    let image = unsafe { std::slice::from_raw_parts_mut(ctx.image, ctx.image_len as usize) };
+    let (d, s, n) = (dst as usize, src as usize, len as usize);
+    if d + n > image.len() || s + n > image.len() {
+        let shared = unsafe { &*ctx.shared };
+        let program = unsafe { &*shared.program };
+        ctx.fault = Some(fault(
+            program,
+            func as u32,
+            None,
+            FaultKind::Function,
+            format!("copy of {n} bytes {s} -> {d} outside the image"),
+        ));
+        return 1;
+    }
+    image.copy_within(s..s + n, d);
+    0
+}

@@ -1,0 +1,346 @@
+//! One IR function to one Cranelift function: basic blocks, the watchdog
+//! budget, control flow and calls. Instruction bodies are in `emit.rs`.
+//!
+//! # The watchdog, exactly as the interpreter counts it
+//! The interpreter spends one unit of budget per instruction and faults on
+//! the instruction it has no unit left for, naming that instruction's
+//! statement. Here every basic block (a block also ends after a `Call`, so
+//! the callee's spending is seen) charges its whole length on entry: if the
+//! budget stays non-negative the block runs at full speed; otherwise it
+//! runs a second, counting copy of itself that checks before every
+//! instruction and faults at exactly the interpreter's instruction, after
+//! exactly the same stores and with any earlier fault of the block first.
+//! The budget lives in a variable and is written back to the context only
+//! around calls and returns.
+
+use crate::rt::{self, BuiltinCall, RunCtx};
+use crate::JitError;
+use automat_ir::code::{Func, Inst, Reg, RegClass};
+use cranelift_codegen::ir::{
+    condcodes::IntCC, types, BlockArg, FuncRef, Function, InstBuilder, MemFlagsData, StackSlot,
+    StackSlotData, StackSlotKind, Type, Value,
+};
+use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext, Variable};
+
+/// Functions a compiled POU calls.
+pub struct Helpers {
+    pub fault: FuncRef,
+    pub builtin: FuncRef,
+    pub copy: FuncRef,
+    /// (IR function index, reference) of every callee.
+    pub callees: Vec<(u32, FuncRef)>,
+    pub ptr: Type,
+}
+
+pub(crate) struct Tx<'a, 'b> {
+    pub b: FunctionBuilder<'b>,
+    pub f: &'a Func,
+    pub index: u32,
+    pub h: &'a Helpers,
+    pub vars: Vec<Variable>,
+    pub left: Variable,
+    pub ctx: Value,
+    pub this: Value,
+    pub image: Value,
+    pub len: Value,
+    /// Argument slots of builtins (sized to the largest call).
+    pub slots: Option<StackSlot>,
+    pub builtins: &'a mut Vec<BuiltinCall>,
+}
+
+pub fn class_type(c: RegClass) -> Type {
+    match c {
+        RegClass::I64 => types::I64,
+        RegClass::F32 => types::F32,
+        RegClass::F64 => types::F64,
+    }
+}
+
+/// Flags of image and context accesses: no alignment is promised, and a
+/// bounds check (or the verifier) has made every access valid.
+pub fn mem() -> MemFlagsData {
+    MemFlagsData::new().with_notrap()
+}
+
+/// Instruction indexes that start a basic block.
+fn leaders(code: &[Inst]) -> Vec<bool> {
+    let mut l = vec![false; code.len() + 1];
+    if let Some(x) = l.first_mut() {
+        *x = true;
+    }
+    let mut mark = |t: u32| {
+        if let Some(x) = l.get_mut(t as usize) {
+            *x = true;
+        }
+    };
+    for (pc, inst) in code.iter().enumerate() {
+        match *inst {
+            Inst::Jump { target } => {
+                mark(target);
+                mark(pc as u32 + 1);
+            }
+            Inst::Branch { then, els, .. } => {
+                mark(then);
+                mark(els);
+                mark(pc as u32 + 1);
+            }
+            Inst::Ret | Inst::Call { .. } => mark(pc as u32 + 1),
+            _ => {}
+        }
+    }
+    l
+}
+
+fn is_terminator(inst: &Inst) -> bool {
+    matches!(inst, Inst::Jump { .. } | Inst::Branch { .. } | Inst::Ret)
+}
+
+pub fn function(
+    func: &mut Function,
+    fctx: &mut FunctionBuilderContext,
+    f: &Func,
+    index: u32,
+    h: &Helpers,
+    builtins: &mut Vec<BuiltinCall>,
+    target: cranelift_codegen::isa::TargetFrontendConfig,
+) -> Result<(), JitError> {
+    let mut b = FunctionBuilder::new(func, fctx);
+    let entry = b.create_block();
+    b.append_block_params_for_function_params(entry);
+    b.switch_to_block(entry);
+    let params = b.block_params(entry).to_vec();
+    let (Some(&ctx), Some(&this)) = (params.first(), params.get(1)) else {
+        return Err(JitError::Backend("function parameters".into()));
+    };
+    let vars = f.regs.iter().map(|c| b.declare_var(class_type(*c))).collect();
+    let left = b.declare_var(types::I64);
+    let image = b.ins().load(h.ptr, mem(), ctx, rt::OFF_IMAGE);
+    let len = b.ins().load(types::I64, mem(), ctx, rt::OFF_LEN);
+    let l0 = b.ins().load(types::I64, mem(), ctx, rt::OFF_LEFT);
+    b.def_var(left, l0);
+    let max_args = f
+        .code
+        .iter()
+        .filter_map(|i| match i {
+            Inst::Builtin { count, .. } => Some(*count as u32 + 1),
+            _ => None,
+        })
+        .max();
+    let slots = max_args.map(|n| {
+        b.create_sized_stack_slot(StackSlotData::new(StackSlotKind::ExplicitSlot, n * 8, 3))
+    });
+    let mut tx = Tx {
+        b,
+        f,
+        index,
+        h,
+        vars,
+        left,
+        ctx,
+        this,
+        image,
+        len,
+        slots,
+        builtins,
+    };
+    tx.body()?;
+    tx.b.seal_all_blocks();
+    tx.b.finalize(target);
+    Ok(())
+}
+
+impl Tx<'_, '_> {
+    pub fn var(&self, r: Reg) -> Result<Variable, JitError> {
+        self.vars
+            .get(r as usize)
+            .copied()
+            .ok_or_else(|| JitError::Backend(format!("{}: no register r{r}", self.f.name)))
+    }
+
+    pub fn get(&mut self, r: Reg) -> Result<Value, JitError> {
+        let v = self.var(r)?;
+        Ok(self.b.use_var(v))
+    }
+
+    pub fn set(&mut self, r: Reg, val: Value) -> Result<(), JitError> {
+        let v = self.var(r)?;
+        self.b.def_var(v, val);
+        Ok(())
+    }
+
+    pub fn iconst(&mut self, v: i64) -> Value {
+        self.b.ins().iconst(types::I64, v)
+    }
+
+    /// Branches to a cold block that records a fault and returns 1 when
+    /// `cond` is non-zero; continues in a fresh block otherwise.
+    pub fn fault_if(&mut self, cond: Value, kind: i64, site: i64, args: [Value; 3]) {
+        let cold = self.b.create_block();
+        let cont = self.b.create_block();
+        self.b.set_cold_block(cold);
+        self.b.ins().brif(cond, cold, &[], cont, &[]);
+        self.b.switch_to_block(cold);
+        let k = self.iconst(kind);
+        let func = self.iconst(self.index as i64);
+        let s = self.iconst(site);
+        let [a, b2, c] = args;
+        self.b
+            .ins()
+            .call(self.h.fault, &[self.ctx, k, func, s, a, b2, c]);
+        let one = self.b.ins().iconst(types::I32, 1);
+        self.b.ins().return_(&[one]);
+        self.b.switch_to_block(cont);
+    }
+
+    /// Returns `status` from this function when it is non-zero (a fault a
+    /// callee or helper already recorded).
+    pub fn propagate(&mut self, status: Value) {
+        let cold = self.b.create_block();
+        let cont = self.b.create_block();
+        self.b.set_cold_block(cold);
+        self.b.ins().brif(status, cold, &[], cont, &[]);
+        self.b.switch_to_block(cold);
+        self.b.ins().return_(&[status]);
+        self.b.switch_to_block(cont);
+    }
+
+    fn store_left(&mut self) {
+        let l = self.b.use_var(self.left);
+        self.b.ins().store(mem(), l, self.ctx, rt::OFF_LEFT);
+    }
+
+    fn body(&mut self) -> Result<(), JitError> {
+        let code = &self.f.code;
+        let lead = leaders(code);
+        let mut blocks = Vec::with_capacity(code.len());
+        for &is in lead.iter().take(code.len()) {
+            blocks.push(is.then(|| self.b.create_block()));
+        }
+        let block_at = |pc: u32| blocks.get(pc as usize).copied().flatten();
+        let first = block_at(0).ok_or_else(|| JitError::Backend("empty function".into()))?;
+        self.b.ins().jump(first, &[]);
+        let mut start = 0usize;
+        while start < code.len() {
+            let mut end = start + 1;
+            while end < code.len() && !lead.get(end).copied().unwrap_or(true) {
+                end += 1;
+            }
+            let Some(block) = block_at(start as u32) else {
+                return Err(JitError::Backend("block map".into()));
+            };
+            self.b.switch_to_block(block);
+            self.charge(start, end)?;
+            for pc in start..end {
+                let inst = code.get(pc).copied().ok_or_else(|| JitError::Backend("pc".into()))?;
+                self.control(&inst, pc as u32, &block_at)?;
+            }
+            if !code.get(end - 1).is_some_and(is_terminator) {
+                let next =
+                    block_at(end as u32).ok_or_else(|| JitError::Backend("fall-through".into()))?;
+                self.b.ins().jump(next, &[]);
+            }
+            start = end;
+        }
+        Ok(())
+    }
+
+    /// Charges the block `start..end` to the budget on entry; when it does
+    /// not cover the block, runs the counting copy (which ends in a fault).
+    fn charge(&mut self, start: usize, end: usize) -> Result<(), JitError> {
+        let n = (end - start) as i64;
+        let l = self.b.use_var(self.left);
+        let l2 = self.b.ins().iadd_imm_s(l, -n);
+        self.b.def_var(self.left, l2);
+        let short = self.b.ins().icmp_imm_s(IntCC::SignedLessThan, l2, 0);
+        let slow = self.b.create_block();
+        let fast = self.b.create_block();
+        self.b.set_cold_block(slow);
+        self.b.ins().brif(short, slow, &[], fast, &[]);
+        self.b.switch_to_block(slow);
+        let mut left = self.b.ins().iadd_imm_s(l2, n);
+        let zero = self.iconst(0);
+        for pc in start..end {
+            let out = self.b.ins().icmp_imm_s(IntCC::Equal, left, 0);
+            self.fault_if(out, rt::F_WATCHDOG, pc as i64, [zero, zero, zero]);
+            left = self.b.ins().iadd_imm_s(left, -1);
+            let inst = self
+                .f
+                .code
+                .get(pc)
+                .copied()
+                .ok_or_else(|| JitError::Backend("pc".into()))?;
+            if !is_terminator(&inst) && !matches!(inst, Inst::Call { .. }) {
+                self.emit(&inst)?;
+            }
+        }
+        // The budget ran out at or before the block's last instruction, so
+        // a fault returned above; this point is never reached.
+        let wd = self.iconst(0);
+        self.b.def_var(self.left, wd);
+        let last = self.iconst(1);
+        self.fault_if(last, rt::F_WATCHDOG, end as i64 - 1, [zero, zero, zero]);
+        let one = self.b.ins().iconst(types::I32, 1);
+        self.b.ins().return_(&[one]);
+        self.b.switch_to_block(fast);
+        Ok(())
+    }
+
+    /// Control instructions here, everything else in `emit`.
+    fn control(
+        &mut self,
+        inst: &Inst,
+        pc: u32,
+        block_at: &dyn Fn(u32) -> Option<cranelift_codegen::ir::Block>,
+    ) -> Result<(), JitError> {
+        let missing = |t: u32| JitError::Backend(format!("no block at {t}"));
+        match *inst {
+            Inst::Jump { target } => {
+                let t = block_at(target).ok_or_else(|| missing(target))?;
+                self.b.ins().jump(t, &[]);
+            }
+            Inst::Branch { cond, then, els } => {
+                let c = self.get(cond)?;
+                let t = block_at(then).ok_or_else(|| missing(then))?;
+                let e = block_at(els).ok_or_else(|| missing(els))?;
+                let no: &[BlockArg] = &[];
+                self.b.ins().brif(c, t, no, e, no);
+            }
+            Inst::Ret => {
+                self.store_left();
+                let zero = self.b.ins().iconst(types::I32, 0);
+                self.b.ins().return_(&[zero]);
+            }
+            Inst::Call { func, this } => {
+                let callee = self
+                    .h
+                    .callees
+                    .iter()
+                    .find(|(i, _)| *i == func)
+                    .map(|(_, r)| *r)
+                    .ok_or_else(|| JitError::Backend(format!("callee {func} at {pc}")))?;
+                let t = self.offset(this);
+                self.store_left();
+                let call = self.b.ins().call(callee, &[self.ctx, t]);
+                let status = self
+                    .b
+                    .inst_results(call)
+                    .first()
+                    .copied()
+                    .ok_or_else(|| JitError::Backend("call result".into()))?;
+                self.propagate(status);
+                let l = self
+                    .b
+                    .ins()
+                    .load(types::I64, mem(), self.ctx, rt::OFF_LEFT);
+                self.b.def_var(self.left, l);
+            }
+            _ => self.emit(inst)?,
+        }
+        Ok(())
+    }
+}
+
+/// The context layout generated code relies on.
+const _: () = assert!(std::mem::size_of::<*mut u8>() == 8 && rt::OFF_NOW > rt::OFF_LEFT);
+#[allow(dead_code)]
+fn _ctx_is_sized(_: &RunCtx) {}

@@ -1,0 +1,331 @@
+//! `automat.toml`: reading the project file into a [`Project`].
+//!
+//! Every error is a [`Diagnostic`] whose span points into the project file
+//! (added to the caller's [`SourceMap`]), so it renders as
+//! `examples/crane/automat.toml:7:9: error[E301]: ...`.
+//!
+//! Sources: the `sources` list (files or folders, relative to the project
+//! file; folders searched recursively for `*.st`), or by default every
+//! `*.st` file directly beside `automat.toml` (not in sub-folders, so a
+//! folder of variants or scenarios is never compiled by accident).
+
+use automat_base::{Code, Diagnostic, FileId, SourceMap, Span};
+use automat_plant::{models, Plant};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// The project file's name.
+pub const FILE_NAME: &str = "automat.toml";
+
+/// Default period of the cyclic task without a CONFIGURATION.
+pub const DEFAULT_CYCLE_NS: i64 = 10_000_000;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    project: RawProject,
+    plant: Option<RawPlant>,
+    #[serde(default)]
+    bind: BTreeMap<Spanned<String>, Spanned<String>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawProject {
+    name: String,
+    #[serde(default)]
+    description: String,
+    sources: Option<Vec<Spanned<String>>>,
+    program: Option<String>,
+    cycle_time: Option<Spanned<String>>,
+    #[serde(default)]
+    libraries: Vec<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPlant {
+    model: Spanned<String>,
+    seed: Option<u64>,
+    #[serde(default)]
+    params: BTreeMap<Spanned<String>, Spanned<f64>>,
+}
+
+/// One `[bind]` entry: `signal = "target"`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BindSpec {
+    pub signal: String,
+    pub signal_span: Span,
+    /// A variable path (`Ctrl.M1S`) or a direct address (`%QX3.1`).
+    pub target: String,
+    pub target_span: Span,
+}
+
+/// The `[plant]` table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlantSpec {
+    pub model: String,
+    pub model_span: Span,
+    pub seed: u64,
+    /// `[plant.params]`, applied as `command("set", [(key, value)])`.
+    pub params: Vec<(String, f64, Span)>,
+    pub bind: Vec<BindSpec>,
+}
+
+/// A loaded project file.
+#[derive(Clone, Debug)]
+pub struct Project {
+    /// The folder of `automat.toml`.
+    pub dir: PathBuf,
+    /// `automat.toml` in the caller's source map.
+    pub file: FileId,
+    pub name: String,
+    pub description: String,
+    /// The Structured Text files to compile, sorted.
+    pub sources: Vec<PathBuf>,
+    /// The PROGRAM to run when there is no CONFIGURATION.
+    pub program: Option<String>,
+    pub cycle_time_ns: i64,
+    /// Vendor dialects (`libraries = ["isagraf"]`, like `automat run --lib`).
+    pub libraries: Vec<String>,
+    pub plant: Option<PlantSpec>,
+}
+
+impl Project {
+    /// A new model instance as the project configures it (parameters set).
+    /// `None` when the project has no `[plant]`.
+    pub fn new_plant(&self) -> Result<Option<Box<dyn Plant>>, Vec<Diagnostic>> {
+        let Some(spec) = &self.plant else {
+            return Ok(None);
+        };
+        let Some(mut plant) = models::by_name(&spec.model) else {
+            return Err(vec![Diagnostic::error(
+                Code::E301,
+                spec.model_span,
+                format!("unknown plant model `{}`", spec.model),
+            )
+            .with_note(format!("known models: {}", models::NAMES.join(", ")))]);
+        };
+        let mut errors = Vec::new();
+        for (key, value, span) in &spec.params {
+            if let Err(e) = plant.command("set", &[(key.as_str(), *value)]) {
+                errors.push(Diagnostic::error(
+                    Code::E307,
+                    *span,
+                    format!("plant parameter `{key}` refused: {e}"),
+                ));
+            }
+        }
+        if errors.is_empty() {
+            Ok(Some(plant))
+        } else {
+            Err(errors)
+        }
+    }
+}
+
+/// The project file of `path`: `path` itself when it is a file, else
+/// `path/automat.toml` when that exists.
+pub fn project_file(path: &Path) -> Option<PathBuf> {
+    if path.is_dir() {
+        let f = path.join(FILE_NAME);
+        f.is_file().then_some(f)
+    } else if path.file_name().is_some_and(|n| n == FILE_NAME) {
+        Some(path.to_path_buf())
+    } else {
+        None
+    }
+}
+
+/// The nearest `automat.toml` in the folder of `path` or above it.
+pub fn find_above(path: &Path) -> Option<PathBuf> {
+    let mut dir = if path.is_dir() {
+        Some(path)
+    } else {
+        path.parent()
+    };
+    while let Some(d) = dir {
+        let f = d.join(FILE_NAME);
+        if f.is_file() {
+            return Some(f);
+        }
+        dir = d.parent();
+    }
+    None
+}
+
+fn span_of(file: FileId, r: std::ops::Range<usize>) -> Span {
+    let c = |x: usize| u32::try_from(x).unwrap_or(u32::MAX);
+    Span::new(file, c(r.start), c(r.end))
+}
+
+/// Reads and checks `automat.toml` at `path` (the text goes into `map`).
+pub fn load(path: &Path, map: &mut SourceMap) -> Result<Project, Vec<Diagnostic>> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        let file = map.add(path.display().to_string(), String::new());
+        vec![Diagnostic::error(
+            Code::E300,
+            Span::new(file, 0, 0),
+            format!("cannot read the project file: {e}"),
+        )]
+    })?;
+    let file = map.add(path.display().to_string(), text.clone());
+    parse(path, file, &text)
+}
+
+/// Parses the text of a project file already in a source map as `file`.
+pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagnostic>> {
+    let raw: RawFile = toml::from_str(text).map_err(|e| {
+        let span = e.span().map_or(Span::new(file, 0, 0), |r| span_of(file, r));
+        vec![Diagnostic::error(
+            Code::E300,
+            span,
+            format!("invalid project file: {}", e.message().trim_end()),
+        )]
+    })?;
+    let dir = path
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    let dir = if dir.as_os_str().is_empty() {
+        PathBuf::from(".")
+    } else {
+        dir
+    };
+    let mut errors = Vec::new();
+    let cycle_time_ns = match &raw.project.cycle_time {
+        None => DEFAULT_CYCLE_NS,
+        Some(ct) => match automat_runtime::timearg::parse_duration(ct.get_ref()) {
+            Ok(ns) if ns > 0 => ns,
+            Ok(_) => {
+                errors.push(Diagnostic::error(
+                    Code::E300,
+                    span_of(file, ct.span()),
+                    "cycle_time must be longer than 0",
+                ));
+                DEFAULT_CYCLE_NS
+            }
+            Err(e) => {
+                errors.push(Diagnostic::error(
+                    Code::E300,
+                    span_of(file, ct.span()),
+                    format!("cycle_time: {e}"),
+                ));
+                DEFAULT_CYCLE_NS
+            }
+        },
+    };
+    let sources = match sources(&dir, file, raw.project.sources.as_deref()) {
+        Ok(s) => s,
+        Err(d) => {
+            errors.push(d);
+            Vec::new()
+        }
+    };
+    let plant = raw.plant.map(|p| PlantSpec {
+        model: p.model.get_ref().clone(),
+        model_span: span_of(file, p.model.span()),
+        seed: p.seed.unwrap_or(1),
+        params: p
+            .params
+            .into_iter()
+            .map(|(k, v)| (k.get_ref().clone(), *v.get_ref(), span_of(file, k.span())))
+            .collect(),
+        bind: raw
+            .bind
+            .into_iter()
+            .map(|(k, v)| BindSpec {
+                signal: k.get_ref().clone(),
+                signal_span: span_of(file, k.span()),
+                target: v.get_ref().clone(),
+                target_span: span_of(file, v.span()),
+            })
+            .collect(),
+    });
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    Ok(Project {
+        dir,
+        file,
+        name: raw.project.name,
+        description: raw.project.description,
+        sources,
+        program: raw.project.program,
+        cycle_time_ns,
+        libraries: raw.project.libraries,
+        plant,
+    })
+}
+
+fn is_st(p: &Path) -> bool {
+    p.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("st"))
+}
+
+/// Every `*.st` under `dir` (recursively when `deep`), sorted.
+fn st_files(dir: &Path, deep: bool, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            if deep {
+                st_files(&p, deep, out)?;
+            }
+        } else if is_st(&p) {
+            out.push(p);
+        }
+    }
+    Ok(())
+}
+
+fn sources(
+    dir: &Path,
+    file: FileId,
+    listed: Option<&[Spanned<String>]>,
+) -> Result<Vec<PathBuf>, Diagnostic> {
+    let mut out = Vec::new();
+    match listed {
+        None => st_files(dir, false, &mut out).map_err(|e| {
+            Diagnostic::error(
+                Code::E308,
+                Span::new(file, 0, 0),
+                format!("cannot list {}: {e}", dir.display()),
+            )
+        })?,
+        Some(list) => {
+            for s in list {
+                let p = dir.join(s.get_ref());
+                let err = |why: String| {
+                    Diagnostic::error(
+                        Code::E308,
+                        span_of(file, s.span()),
+                        format!("source `{}`: {why}", s.get_ref()),
+                    )
+                };
+                if p.is_dir() {
+                    st_files(&p, true, &mut out).map_err(|e| err(e.to_string()))?;
+                } else if p.is_file() {
+                    out.push(p);
+                } else {
+                    return Err(err("no such file or folder".into()));
+                }
+            }
+        }
+    }
+    if out.is_empty() {
+        return Err(Diagnostic::error(
+            Code::E308,
+            Span::new(file, 0, 0),
+            format!(
+                "the project has no Structured Text sources (*.st in {})",
+                dir.display()
+            ),
+        ));
+    }
+    Ok(out)
+}

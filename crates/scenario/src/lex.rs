@@ -1,0 +1,149 @@
+//! Tokens of one scenario line.
+//!
+//! A word is a run of anything but white space, `(`, `)`, `=`, `<`, `>`,
+//! `"` and `#`-comments; a `[` inside a word extends it to the matching `]`
+//! (so `arr[1, 2].x` is one word), and `#` right after a letter is part of
+//! the word (`T#1s`, `CraneStep#Rest1`). A `#` elsewhere starts a comment.
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Tok {
+    Word(String),
+    Str(String),
+    Op(&'static str),
+    LParen,
+    RParen,
+}
+
+/// A token and its byte range in the line.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Token {
+    pub tok: Tok,
+    pub start: usize,
+    pub end: usize,
+}
+
+/// The tokens of `line`; an error is (byte offset, message).
+pub fn tokens(line: &str) -> Result<Vec<Token>, (usize, String)> {
+    let b = line.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while let Some(&c) = b.get(i) {
+        let start = i;
+        match c {
+            b' ' | b'\t' | b'\r' => {
+                i += 1;
+                continue;
+            }
+            b'#' => break,
+            b'(' | b')' => {
+                i += 1;
+                out.push(Token {
+                    tok: if c == b'(' { Tok::LParen } else { Tok::RParen },
+                    start,
+                    end: i,
+                });
+                continue;
+            }
+            b'"' => {
+                let rest = line.get(i + 1..).unwrap_or("");
+                let close = rest
+                    .find('"')
+                    .ok_or((i, "string without closing `\"`".to_string()))?;
+                out.push(Token {
+                    tok: Tok::Str(rest.get(..close).unwrap_or("").to_string()),
+                    start,
+                    end: i + close + 2,
+                });
+                i += close + 2;
+                continue;
+            }
+            b'=' | b'<' | b'>' => {
+                let two = line.get(i..i + 2).unwrap_or("");
+                let op = match two {
+                    "<=" => "<=",
+                    ">=" => ">=",
+                    "<>" => "<>",
+                    _ => match c {
+                        b'=' => "=",
+                        b'<' => "<",
+                        _ => ">",
+                    },
+                };
+                i += op.len();
+                out.push(Token {
+                    tok: Tok::Op(op),
+                    start,
+                    end: i,
+                });
+                continue;
+            }
+            _ => {}
+        }
+        let mut depth = 0usize;
+        while let Some(&c) = b.get(i) {
+            match c {
+                b'[' => depth += 1,
+                b']' => depth = depth.saturating_sub(1),
+                _ if depth > 0 => {}
+                b' ' | b'\t' | b'\r' | b'(' | b')' | b'=' | b'<' | b'>' | b'"' => break,
+                b'#' if i == start => break,
+                _ => {}
+            }
+            i += 1;
+        }
+        if depth > 0 {
+            return Err((start, "`[` without `]`".to_string()));
+        }
+        out.push(Token {
+            tok: Tok::Word(line.get(start..i).unwrap_or("").to_string()),
+            start,
+            end: i,
+        });
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn words(line: &str) -> Vec<Tok> {
+        tokens(line).unwrap().into_iter().map(|t| t.tok).collect()
+    }
+
+    #[test]
+    fn words_operators_strings_comments() {
+        assert_eq!(
+            words(r#"name "a # b" # comment"#),
+            [Tok::Word("name".into()), Tok::Str("a # b".into())]
+        );
+        assert_eq!(
+            words("expect at 40s Ctrl.step = CraneStep#Rest1 AND plant.x<0.05"),
+            [
+                Tok::Word("expect".into()),
+                Tok::Word("at".into()),
+                Tok::Word("40s".into()),
+                Tok::Word("Ctrl.step".into()),
+                Tok::Op("="),
+                Tok::Word("CraneStep#Rest1".into()),
+                Tok::Word("AND".into()),
+                Tok::Word("plant.x".into()),
+                Tok::Op("<"),
+                Tok::Word("0.05".into()),
+            ]
+        );
+        assert_eq!(
+            words("NOT (a[1, 2].x <> T#1s)"),
+            [
+                Tok::Word("NOT".into()),
+                Tok::LParen,
+                Tok::Word("a[1, 2].x".into()),
+                Tok::Op("<>"),
+                Tok::Word("T#1s".into()),
+                Tok::RParen
+            ]
+        );
+        assert!(tokens("a[1").is_err());
+        assert!(tokens("name \"x").is_err());
+    }
+}

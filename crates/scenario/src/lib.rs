@@ -1,0 +1,12 @@
+//! Scenarios: files a user writes to drive a project's plant and check
+//! what the controller does, in virtual time.
+
+pub mod ast;
+pub mod check;
+pub mod conformance;
+mod lex;
+pub mod parse;
+pub mod run;
+
+pub use parse::parse;
+pub use run::{run, Failure, Outcome};

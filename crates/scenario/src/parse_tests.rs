@@ -1,0 +1,114 @@
+use super::*;
+
+fn ok(text: &str) -> Scenario {
+    parse(text, FileId(0), "default").unwrap_or_else(|e| panic!("{e:?}"))
+}
+
+fn err(text: &str) -> (Code, u32, String) {
+    let e = parse(text, FileId(0), "x").expect_err("should fail");
+    (e[0].code, e[0].span.start, e[0].message.clone())
+}
+
+#[test]
+fn the_contract_example() {
+    let s = ok(r#"name "normal cycle"   # comment
+duration 60s
+seed 7
+at 1s press Pornire for 200ms
+at 2s set Selector = 2
+at 5s release Pornire
+at 10s stuck l2 = TRUE
+at 30s unstick l2
+at 0s noise Temp 20
+at 3s plant bottle capped=0
+expect at 2s M2S
+expect M1D within 30s after 1s
+expect always NOT (M1S AND M1D)
+expect always M2S during 2s..5s
+expect never M1S AND M1D
+expect at 40s Ctrl.step = CraneStep#Rest1 AND plant.x < 0.05
+"#);
+    assert_eq!(s.name, "normal cycle");
+    assert_eq!((s.duration_ns, s.seed), (60_000_000_000, Some(7)));
+    assert_eq!(s.actions.len(), 7);
+    assert_eq!(s.actions[0].at_ns, 1_000_000_000);
+    assert!(
+        matches!(&s.actions[0].kind, ActionKind::Press(n, Some(200_000_000)) if n.text == "Pornire")
+    );
+    assert!(
+        matches!(&s.actions[1].kind, ActionKind::Set(n, Lit::Int(2), _) if n.text == "Selector")
+    );
+    assert!(matches!(&s.actions[4].kind, ActionKind::Unstick(_)));
+    assert!(matches!(&s.actions[5].kind, ActionKind::Noise(_, a) if *a == 20.0));
+    assert!(
+        matches!(&s.actions[6].kind, ActionKind::Plant(n, a) if n.text == "bottle" && a == &[("capped".to_string(), 0.0)])
+    );
+    assert_eq!(s.expects.len(), 6);
+    assert_eq!(s.expects[0].when, When::At(2_000_000_000));
+    assert_eq!(s.expects[0].text, "at 2s M2S");
+    assert_eq!(s.expects[0].line, 11);
+    assert_eq!(
+        s.expects[1].when,
+        When::Within {
+            after: 1_000_000_000,
+            within: 30_000_000_000
+        }
+    );
+    assert_eq!(s.expects[2].when, When::Always { from: 0, to: None });
+    assert_eq!(
+        s.expects[3].when,
+        When::Always {
+            from: 2_000_000_000,
+            to: Some(5_000_000_000)
+        }
+    );
+    assert!(
+        matches!(&s.expects[4].cond, Expr::Not(inner) if matches!(**inner, Expr::Logic(LogicOp::And, _, _)))
+    );
+    let Expr::Logic(LogicOp::And, a, b) = &s.expects[5].cond else {
+        panic!()
+    };
+    assert!(
+        matches!(&**a, Expr::Cmp(CmpOp::Eq, _, r) if matches!(&**r, Expr::Lit(Lit::Enum(t, v), _) if t == "CraneStep" && v == "Rest1"))
+    );
+    assert!(
+        matches!(&**b, Expr::Cmp(CmpOp::Lt, _, r) if matches!(&**r, Expr::Lit(Lit::Real(x), _) if *x == 0.05))
+    );
+}
+
+#[test]
+fn not_binds_tighter_than_and_and_names_default() {
+    let s = ok("duration 1s\nexpect always NOT a AND b\n");
+    assert_eq!(s.name, "default");
+    assert!(
+        matches!(&s.expects[0].cond, Expr::Logic(LogicOp::And, a, _) if matches!(**a, Expr::Not(_)))
+    );
+}
+
+#[test]
+fn errors_point_at_the_token() {
+    // line 2 starts at byte 12
+    assert_eq!(
+        err("duration 1s\nat 1x press a\n"),
+        (Code::E320, 15, "`1x` is not a valid TIME literal: `x` is not a unit (d, h, m, s, ms, us, ns) (write a duration like `10ms` or `T#1s500ms`)".to_string())
+    );
+    assert_eq!(err("duration 1s\nat 1s jump a\n").0, Code::E320);
+    assert_eq!(
+        err("duration 1s\nexpect a within 1s\n").2,
+        "expected `after`"
+    );
+    assert_eq!(
+        err("duration 1s\nexpect always a during 5s..1s\n").2,
+        "the range `5s..1s` ends before it starts"
+    );
+    assert_eq!(
+        err("duration 1s\nfoo\n").2,
+        "unknown statement `foo` (want `name`, `duration`, `seed`, `at` or `expect`)"
+    );
+    assert_eq!(err("duration 1s\nexpect at 1s (a\n").2, "expected `)`");
+    assert_eq!(
+        err("duration 1s extra\n").2,
+        "unexpected text at the end of the line"
+    );
+    assert_eq!(err("expect at 1s a\n").0, Code::E323);
+}

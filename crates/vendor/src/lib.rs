@@ -1,0 +1,217 @@
+//! Vendor dialects: the ISaGRAF and PL7 ways of writing IEC 61131-3
+//! programs, and their libraries, on top of the standard front end.
+//!
+//! A project opts in per dialect (`automat check --lib isagraf`,
+//! `libraries = ["isagraf"]` in `automat.toml`); without it nothing here
+//! changes a program. A dialect is two things:
+//! - a *library*: POUs written in Structured Text (`lib/*.st`), added to the
+//!   project as one more source file ([`add_libraries`]). A user POU of the
+//!   same name replaces the library's, so a project never collides with it;
+//! - *rewrites* of the parsed tree before checking ([`check_sources`]): the
+//!   dialect's constructs become plain ST plus hidden `__` variables, so the
+//!   checker, lowering and every backend see nothing vendor-specific (the
+//!   same rule the SFC desugaring follows).
+//!
+//! ISaGRAF (`timer`, `sections`, `children`): TIMER variables with
+//! TSTART/TSTOP, the program sections Begin / Sequential / End, and child
+//! SFC programs (GSTART, GKILL, GFREEZE, GRST, GSTATUS, `child(N|S|R)`). The exact semantics are in
+//! `docs/vendor-dialects.md`.
+//!
+//! Invariants: never panics on any tree; every rewrite keeps the spans of
+//! the text it came from, so diagnostics point at what the user wrote;
+//! diagnostics use the codes E150–E169 / W150–W159.
+
+mod build;
+mod children;
+mod empty;
+mod pl7;
+mod pragma;
+mod sections;
+mod timer;
+mod walk;
+
+use automat_base::{Code, Diagnostic, FileId, Interner, SourceMap};
+use automat_sema::Analysis;
+use automat_syntax::ast::{Item, SourceUnit};
+
+/// A vendor dialect a project can opt into.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Dialect {
+    /// ISaGRAF: helper library, TIMER variables, program sections, child
+    /// charts.
+    Isagraf,
+    /// PL7: `%Xi` steps, `%S`/`%SW` system objects, P1/N1/P0 sections.
+    Pl7,
+}
+
+impl Dialect {
+    pub const ALL: &'static [Dialect] = &[Dialect::Isagraf, Dialect::Pl7];
+
+    /// The dialect a `--lib` / `libraries` name selects (any case).
+    pub fn from_name(name: &str) -> Option<Dialect> {
+        Dialect::ALL
+            .iter()
+            .copied()
+            .find(|d| d.name().eq_ignore_ascii_case(name.trim()))
+    }
+
+    /// The name used on the command line and in `automat.toml`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Dialect::Isagraf => "isagraf",
+            Dialect::Pl7 => "pl7",
+        }
+    }
+
+    /// The name the library's source file has in diagnostics (`None`: the
+    /// dialect has no library).
+    pub fn library_file(self) -> Option<&'static str> {
+        match self {
+            Dialect::Isagraf => Some("<library isagraf>/isagraf.st"),
+            Dialect::Pl7 => None,
+        }
+    }
+
+    /// The ST source of the dialect's library.
+    pub fn library_source(self) -> Option<&'static str> {
+        match self {
+            Dialect::Isagraf => Some(include_str!("../lib/isagraf.st")),
+            Dialect::Pl7 => None,
+        }
+    }
+}
+
+/// Parses a list of dialect names (`--lib a --lib b`, `libraries = [...]`).
+pub fn parse_names<S: AsRef<str>>(names: &[S]) -> Result<Vec<Dialect>, String> {
+    let mut out = Vec::new();
+    for n in names {
+        let n = n.as_ref();
+        match Dialect::from_name(n) {
+            Some(d) if !out.contains(&d) => out.push(d),
+            Some(_) => {}
+            None => {
+                let known: Vec<&str> = Dialect::ALL.iter().map(|d| d.name()).collect();
+                return Err(format!(
+                    "unknown library `{n}` (known: {})",
+                    known.join(", ")
+                ));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Adds the library source file of every dialect to the project (after the
+/// user's files, so their diagnostics come first).
+pub fn add_libraries(map: &mut SourceMap, dialects: &[Dialect]) {
+    for d in dialects {
+        if let (Some(name), Some(text)) = (d.library_file(), d.library_source()) {
+            map.add(name, text);
+        }
+    }
+}
+
+/// Parses every file of `sources`, applies the rewrites of `dialects`, and
+/// checks the project; parse, rewrite and check diagnostics, sorted by file
+/// and position. With no dialect this is exactly
+/// [`automat_sema::check_sources`].
+pub fn check_sources(
+    sources: &SourceMap,
+    interner: &mut Interner,
+    dialects: &[Dialect],
+) -> (Vec<SourceUnit>, Analysis) {
+    if dialects.is_empty() {
+        return automat_sema::check_sources(sources, interner);
+    }
+    let mut units = Vec::with_capacity(sources.len());
+    let mut diags = Vec::new();
+    let mut libs: Vec<FileId> = Vec::new();
+    let pl7 = dialects.contains(&Dialect::Pl7);
+    for (id, file) in sources.files() {
+        let lib = dialects
+            .iter()
+            .any(|d| d.library_file() == Some(file.name.as_str()));
+        // PL7 spellings become identifiers of the same length first.
+        let pl7_text = if pl7 && !lib {
+            pl7::text::rewrite(&file.text)
+        } else {
+            None
+        };
+        let text = pl7_text.as_deref().unwrap_or(&file.text);
+        let parsed = automat_syntax::parse(id, text, interner);
+        if lib {
+            libs.push(id);
+        }
+        units.push(parsed.unit);
+        diags.extend(parsed.diagnostics);
+    }
+    drop_shadowed_library_pous(&mut units, &libs);
+    let is_user = |u: &SourceUnit| !libs.contains(&u.file);
+    let mut marks = Vec::new();
+    for unit in units.iter().filter(|u| is_user(u)) {
+        marks.push((
+            unit.file,
+            pragma::sections(unit.file, &sources.get(unit.file).text),
+        ));
+    }
+    let mut has_children = false;
+    if dialects.contains(&Dialect::Isagraf) {
+        for unit in units.iter_mut().filter(|u| is_user(u)) {
+            timer::rewrite(unit, interner, &mut diags);
+        }
+        let (children, taken) = children::rewrite(&mut units, &is_user, interner, &mut diags);
+        has_children = children;
+        // The chart parser reported the associations naming a child
+        // program as unknown actions (E125): they are child controls.
+        diags.retain(|d| !(d.code == Code::E125 && taken.contains(&d.span)));
+        // An ISaGRAF transition written without a condition is TRUE.
+        let texts = |u: &SourceUnit| sources.get(u.file).text.clone();
+        let open = empty::isagraf_true(&mut units, &is_user, &texts, interner);
+        drop_errors_within(&mut diags, &open);
+    }
+    if pl7 {
+        let texts = |u: &SourceUnit| sources.get(u.file).text.clone();
+        let open = pl7::rewrite(&mut units, &is_user, &texts, interner, &mut diags);
+        // A PL7 transition written without a condition is FALSE: the
+        // parser's "missing condition" error there is void.
+        drop_errors_within(&mut diags, &open);
+    }
+    sections::synthesize(&mut units, &marks, has_children, interner, &mut diags);
+    let mut analysis = automat_sema::check(&units, interner);
+    diags.append(&mut analysis.diagnostics);
+    diags.sort_by_key(|d: &Diagnostic| (d.span.file, d.span.start, d.span.end));
+    analysis.diagnostics = diags;
+    (units, analysis)
+}
+
+/// Drops the diagnostics that lie within one of `spans`.
+fn drop_errors_within(diags: &mut Vec<Diagnostic>, spans: &[automat_base::Span]) {
+    diags.retain(|d| {
+        !spans
+            .iter()
+            .any(|s| s.file == d.span.file && s.start <= d.span.start && d.span.end <= s.end)
+    });
+}
+
+/// A user POU named like a library POU replaces it (the rule the checker
+/// follows for the standard library).
+fn drop_shadowed_library_pous(units: &mut [SourceUnit], libs: &[FileId]) {
+    let user: Vec<_> = units
+        .iter()
+        .filter(|u| !libs.contains(&u.file))
+        .flat_map(|u| u.items.iter())
+        .filter_map(|i| match i {
+            Item::Pou(p) => Some(p.name.sym),
+            _ => None,
+        })
+        .collect();
+    for unit in units.iter_mut().filter(|u| libs.contains(&u.file)) {
+        unit.items.retain(|i| match i {
+            Item::Pou(p) => !user.contains(&p.name.sym),
+            _ => true,
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests;

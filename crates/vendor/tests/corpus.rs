@@ -1,0 +1,161 @@
+//! The vendor dialects' part of the front-end corpus: the projects of
+//! `tests/corpus/valid` and `tests/corpus/invalid` whose name starts with
+//! `isagraf_` (or `pl7_`), checked with that dialect on (as `automat check
+//! --lib isagraf`). The generic corpus harness (`crates/sema/tests/corpus.rs`)
+//! leaves them to this one.
+//!
+//! A project is one `.st` file or a folder of them. Valid projects must have
+//! no error; in invalid ones every error must be announced by a `//~ CODE`
+//! comment at the end of its line (several codes: `//~ E150 E151`), and
+//! every announced error must occur: the (line, code) lists are compared as
+//! multisets. Every E15x/E16x code must be announced by some invalid project.
+
+use automat_base::{render, Code, Interner, SourceMap};
+use automat_vendor::Dialect;
+use std::path::{Path, PathBuf};
+
+fn corpus(dir: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/corpus")
+        .join(dir)
+}
+
+/// (project name, dialect, files) of the vendor projects of a folder.
+fn projects(dir: &str) -> Vec<(String, Dialect, Vec<PathBuf>)> {
+    let mut out = Vec::new();
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(corpus(dir))
+        .map(|rd| rd.filter_map(|e| e.ok().map(|e| e.path())).collect())
+        .unwrap_or_default();
+    entries.sort();
+    for path in entries {
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let Some(dialect) = name.split('_').next().and_then(Dialect::from_name) else {
+            continue;
+        };
+        let files = if path.is_dir() {
+            let mut f: Vec<PathBuf> = std::fs::read_dir(&path)
+                .map(|rd| rd.filter_map(|e| e.ok().map(|e| e.path())).collect())
+                .unwrap_or_default();
+            f.retain(|p| p.extension().is_some_and(|e| e == "st"));
+            f.sort();
+            f
+        } else if path.extension().is_some_and(|e| e == "st") {
+            vec![path.clone()]
+        } else {
+            continue;
+        };
+        out.push((format!("{dir}/{name}"), dialect, files));
+    }
+    out
+}
+
+/// Checks a project; (file index, line, code) of every error, and the
+/// rendered report.
+fn check(dialect: Dialect, files: &[PathBuf]) -> (Vec<(usize, u32, Code)>, String, Vec<String>) {
+    let mut map = SourceMap::new();
+    let mut texts = Vec::new();
+    for f in files {
+        let text = std::fs::read_to_string(f).unwrap_or_default();
+        map.add(f.display().to_string(), text.clone());
+        texts.push(text);
+    }
+    automat_vendor::add_libraries(&mut map, &[dialect]);
+    let mut interner = Interner::new();
+    let (_, analysis) = automat_vendor::check_sources(&map, &mut interner, &[dialect]);
+    let errors: Vec<_> = analysis
+        .diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .map(|d| {
+            let file = d.span.file.0 as usize;
+            let line = if file < files.len() {
+                map.get(d.span.file).line_col(d.span.start).0
+            } else {
+                0
+            };
+            (file, line, d.code)
+        })
+        .collect();
+    (
+        errors,
+        render::render_report(&map, &analysis.diagnostics),
+        texts,
+    )
+}
+
+/// The `//~ CODE ...` announcements of a file: (line, code).
+fn announced(text: &str) -> Vec<(u32, Code)> {
+    let mut out = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        if let Some((_, rest)) = line.split_once("//~") {
+            for word in rest.split_whitespace() {
+                match Code::parse(word) {
+                    Some(c) => out.push((i as u32 + 1, c)),
+                    None => panic!("line {}: `{word}` is not a diagnostic code", i + 1),
+                }
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn vendor_corpus_valid() {
+    let mut failures = Vec::new();
+    let all = projects("valid");
+    assert!(!all.is_empty(), "no vendor projects in tests/corpus/valid");
+    for (name, dialect, files) in all {
+        let (errors, report, _) = check(dialect, &files);
+        if !errors.is_empty() {
+            failures.push(format!("{name}:\n{report}"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn vendor_corpus_invalid() {
+    let mut failures = Vec::new();
+    let mut seen = Vec::new();
+    let all = projects("invalid");
+    assert!(
+        !all.is_empty(),
+        "no vendor projects in tests/corpus/invalid"
+    );
+    for (name, dialect, files) in all {
+        let (errors, report, texts) = check(dialect, &files);
+        let mut want: Vec<(usize, u32, Code)> = texts
+            .iter()
+            .enumerate()
+            .flat_map(|(i, t)| announced(t).into_iter().map(move |(l, c)| (i, l, c)))
+            .collect();
+        let mut got = errors;
+        want.sort();
+        got.sort();
+        seen.extend(want.iter().map(|w| w.2));
+        if want.is_empty() {
+            failures.push(format!("{name}: announces no error"));
+        } else if want != got {
+            failures.push(format!(
+                "{name}: expected {want:?}\n  got {got:?}\n{report}"
+            ));
+        }
+    }
+    let missing: Vec<&str> = Code::ALL
+        .iter()
+        .filter(|c| {
+            let s = c.as_str();
+            (s.starts_with("E15") || s.starts_with("E16")) && !seen.contains(c)
+        })
+        .map(|c| c.as_str())
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "no vendor invalid project announces {}",
+        missing.join(", ")
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
