@@ -148,7 +148,9 @@ fn main() {
     }
 
     println!("engine: ST through lower + interpreter and lower + JIT (Cranelift) vs the same algorithm in optimised Rust (best of {runs} runs, one core)\n");
-    println!("| case | native | interpreter | interp / native | JIT | JIT / native | verdict (JIT) |");
+    println!(
+        "| case | native | interpreter | interp / native | JIT | JIT / native | verdict (JIT) |"
+    );
     println!("|---|---|---|---|---|---|---|");
     // `--only NAME`: measure just the cases whose name starts with NAME.
     let only = args

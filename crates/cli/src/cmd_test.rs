@@ -5,7 +5,7 @@ use automat_base::{render, SourceMap};
 use automat_iec::format::format_duration;
 use automat_ir::Program;
 use automat_project::{build, find_above, Project};
-use automat_scenario::conformance::{self, Verdict};
+use automat_scenario::conformance::{self, Backend, Verdict};
 use clap::Args;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -19,6 +19,11 @@ use std::path::{Path, PathBuf};
 /// and the values involved), writes the failed run's trace
 /// (`NAME.fail.csv`) and timing diagram (`NAME.fail.svg`) next to the
 /// scenario or under --out, and `N passed, M failed` last.
+///
+/// Folders searched skip hidden folders (`.git`, ...), `target` folders and
+/// every folder holding a file named `.automat-test-skip` (deliberately
+/// failing fixtures mark themselves so; `skipped DIR` is printed). A path
+/// given on the command line is always searched, marked or not.
 ///
 /// Exit codes: 0 all passed, 1 some failed, 2 bad command line.
 #[derive(Args)]
@@ -36,9 +41,18 @@ enum Item {
     Conformance(PathBuf),
 }
 
-fn walk(p: &Path, out: &mut Vec<Item>) -> Result<(), String> {
+/// The file that keeps `automat test` out of a folder it searches.
+pub const SKIP_MARKER: &str = ".automat-test-skip";
+
+/// Collects the items under `p`; `given` when `p` is a command-line path
+/// (searched even when marked).
+fn walk(p: &Path, given: bool, out: &mut Vec<Item>) -> Result<(), String> {
     let meta = std::fs::metadata(p).map_err(|e| format!("{}: {e}", p.display()))?;
     if meta.is_dir() {
+        if !given && p.join(SKIP_MARKER).is_file() {
+            println!("skipped {} ({SKIP_MARKER})", p.display());
+            return Ok(());
+        }
         let mut entries: Vec<PathBuf> = std::fs::read_dir(p)
             .map_err(|e| format!("{}: {e}", p.display()))?
             .filter_map(|e| e.ok().map(|e| e.path()))
@@ -50,7 +64,7 @@ fn walk(p: &Path, out: &mut Vec<Item>) -> Result<(), String> {
             if e.is_dir() && (name.starts_with('.') || name == "target") {
                 continue;
             }
-            walk(&e, out)?;
+            walk(&e, false, out)?;
         }
         return Ok(());
     }
@@ -206,19 +220,28 @@ impl Runner {
             Ok(b) => String::from_utf8_lossy(&b).into_owned(),
             Err(e) => return self.fail(&shown, &format!("{shown}: {e}")),
         };
-        match conformance::verdict(path, &text) {
+        // The interpreter runs it, as `automat run` would by default.
+        match conformance::judge(&shown, &text, Backend::Interp) {
             Verdict::Passed => {
                 self.passed += 1;
                 println!("ok {shown}");
             }
-            Verdict::Failed(f) => self.fail(&shown, &f.join("\n")),
+            Verdict::Failed(f) => {
+                // The verdict starts with `NAME:`; the header line names it.
+                let details = f.strip_prefix(&format!("{shown}:\n")).unwrap_or(&f);
+                let details: Vec<&str> = details
+                    .lines()
+                    .map(|l| l.strip_prefix("    ").unwrap_or(l))
+                    .collect();
+                self.fail(&shown, &details.join("\n"))
+            }
             Verdict::Pending(why) => {
                 self.pending += 1;
-                println!("pending {shown} (skip-until: {why})");
+                println!("pending {why}");
             }
             Verdict::KnownBug(why) => {
                 self.pending += 1;
-                println!("known-bug {shown} ({why})");
+                println!("known-bug {why}");
             }
         }
     }
@@ -232,7 +255,7 @@ pub fn run(args: &TestArgs) -> Outcome {
     };
     let mut items = Vec::new();
     for p in &paths {
-        if let Err(e) = walk(p, &mut items) {
+        if let Err(e) = walk(p, true, &mut items) {
             eprintln!("error: {e}");
             return Outcome::BadInput;
         }

@@ -7,6 +7,7 @@
 
 use automat_ir::Program;
 use automat_plant::{Dir, Value};
+use automat_project::steps::{charts, Chart};
 use automat_project::Sim;
 use automat_runtime::clock::{Monotonic, SystemClock};
 use automat_scenario::ast::{self, ActionKind};
@@ -47,6 +48,8 @@ impl Monotonic for ScaledClock {
 
 pub struct Live {
     program: Program,
+    /// The program's SFC charts, whose active steps the view lists.
+    charts: Vec<Chart>,
     commands: Receiver<String>,
     stop: Arc<AtomicBool>,
     terminal: bool,
@@ -78,6 +81,7 @@ impl Live {
         eprintln!("{HELP}");
         Live {
             program: program.clone(),
+            charts: charts(program),
             commands: rx,
             stop,
             terminal: std::io::stdout().is_terminal(),
@@ -141,7 +145,7 @@ impl Live {
         }
     }
 
-    fn status(&self, now: i64, sim: &Sim) -> Vec<String> {
+    fn status(&self, now: i64, image: &[u8], sim: &Sim) -> Vec<String> {
         let plant = sim.plant();
         let sig = |dirs: &[Dir]| {
             plant
@@ -180,9 +184,12 @@ impl Live {
             format!("  out:   {}", sig(&[Dir::Actuator])),
             format!("  plant: {q}"),
         ]
+        .into_iter()
+        .chain(steps_line(&self.charts, image))
+        .collect()
     }
 
-    pub fn after_scan(&mut self, now: i64, _image: &[u8], sim: &Rc<RefCell<Sim>>) {
+    pub fn after_scan(&mut self, now: i64, image: &[u8], sim: &Rc<RefCell<Sim>>) {
         self.scans += 1;
         while let Ok(line) = self.commands.try_recv() {
             self.command(&line, now, sim);
@@ -196,7 +203,7 @@ impl Live {
             return;
         }
         self.last_draw = Some(Instant::now());
-        let lines = self.status(now, &sim.borrow());
+        let lines = self.status(now, image, &sim.borrow());
         let mut out = std::io::stdout().lock();
         if self.terminal {
             // Clear and redraw in place; the status stays at the top.
@@ -213,5 +220,64 @@ impl Live {
             }
         }
         let _ = out.flush();
+    }
+}
+
+/// `  steps: MAIN: FILL | MAIN.DOSE: IDLE`: the active steps of every chart
+/// (`-` for a chart with none active); `None` without charts.
+fn steps_line(charts: &[Chart], image: &[u8]) -> Option<String> {
+    if charts.is_empty() {
+        return None;
+    }
+    let each: Vec<String> = charts
+        .iter()
+        .map(|c| {
+            let active = c.active(image);
+            let active = if active.is_empty() {
+                "-".to_string()
+            } else {
+                active.join(" ")
+            };
+            format!("{}: {active}", c.owner)
+        })
+        .collect();
+    Some(format!("  steps: {}", each.join(" | ")))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use automat_iec::Elementary;
+    use automat_project::steps::Step;
+    use automat_runtime::{Place, PlaceType};
+
+    fn step(name: &str, offset: u32) -> Step {
+        Step {
+            name: name.into(),
+            x: Place {
+                offset,
+                bit: None,
+                ty: PlaceType::Elementary(Elementary::Bool),
+            },
+        }
+    }
+
+    #[test]
+    fn the_steps_line_lists_active_steps_per_chart() {
+        let charts = vec![
+            Chart {
+                owner: "MAIN".into(),
+                steps: vec![step("START", 0), step("A1", 1), step("B1", 2)],
+            },
+            Chart {
+                owner: "MAIN.FILL".into(),
+                steps: vec![step("IDLE", 3)],
+            },
+        ];
+        assert_eq!(
+            steps_line(&charts, &[0, 1, 1, 0]).as_deref(),
+            Some("  steps: MAIN: A1 B1 | MAIN.FILL: -")
+        );
+        assert_eq!(steps_line(&[], &[]), None);
     }
 }

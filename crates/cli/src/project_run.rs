@@ -234,6 +234,19 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
             Outcome::BadInput
         })?
     };
+    if matches!(report.end, RunEnd::Fault(_)) {
+        // The PLC is in its safe state: the plant is told so, whatever the
+        // variables its actuators are bound to by name last held.
+        sim.borrow_mut().safe_state();
+        // The plant is a physical machine: in virtual time it runs on to the
+        // run's end (--duration, the scenario's duration) with every output
+        // off, so `--print plant.<quantity>` shows where it came to rest. The
+        // PLC's image stays as the fault left it.
+        if let (Limit::Duration(end), ClockMode::Virtual) = (&cfg.limit, clock) {
+            let mut image = exec.image().to_vec();
+            sim.borrow_mut().sync(*end, &mut image);
+        }
+    }
     let mut outcome = Outcome::Ok;
     if let Some((_, mut w)) = observer.trace.take() {
         if let Err(e) = w.flush() {

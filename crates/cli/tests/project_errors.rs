@@ -90,3 +90,29 @@ fn every_project_code_has_a_fixture() {
         "no fixture under tests/projects for {missing:?}"
     );
 }
+
+/// A fault stops the PLC in its safe state, and the plant sees it: the crane
+/// hoists at 1 m/s until the fault in the scan at 200 ms (the model, a scan
+/// behind the outputs, is then at 0.2 m), and with every actuator off it
+/// stays there until the run's end at 1 s, although the variable bound to
+/// M2S still holds TRUE. (Seeing that variable, it would be at 1 m.)
+#[test]
+fn on_a_fault_the_plant_sees_every_actuator_off() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fault_safe_state");
+    let out = Command::new(env!("CARGO_BIN_EXE_automat"))
+        .args(["run", dir.to_str().unwrap_or("."), "--duration", "1s"])
+        .args(["--print", "plant.y", "--print", "M2S", "--print", "Ctrl.n"])
+        .output()
+        .expect("run automat");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{stdout}{stderr}");
+    assert_eq!(
+        stdout, "plant.y = 0.2\nM2S = TRUE\nCtrl.n = 0\n",
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("ctrl.st:12:10: fault in Ctrl: division by zero (1 / 0) (task Ctrl, program instance Ctrl, PLC time T#200ms)\n"),
+        "{stderr}"
+    );
+}

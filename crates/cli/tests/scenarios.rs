@@ -123,3 +123,120 @@ fn plot_writes_an_svg_of_chosen_signals() {
         "error: no column `y` in the trace (it has: b, x)\n"
     );
 }
+
+#[test]
+fn plot_writes_a_png_of_the_same_drawing() {
+    let dir = tmp("png");
+    std::fs::write(dir.join("t.csv"), "time,b\nT#0s,FALSE\nT#10ms,TRUE\n").expect("write");
+    let out = automat(&dir, &["plot", "t.csv", "-o", "t.png"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let png = std::fs::read(dir.join("t.png")).expect("png");
+    let pm = tiny_skia::Pixmap::decode_png(&png).expect("decode");
+    // One boolean row: 10 + 36 + 30 + 10 high, as the SVG.
+    assert_eq!((pm.width(), pm.height()), (900, 86));
+    let px = |x, y| pm.pixel(x, y).map(|c| (c.red(), c.alpha()));
+    // The rising edge at x 510 (10 ms of 20 ms over 140..880).
+    assert_eq!(px(505, 25), Some((255, 255)));
+    assert_eq!(px(509, 25), Some((63, 255)));
+    assert_eq!(px(510, 25), Some((63, 255)));
+    // The name `b` ends at x 132: its stem is the column 127.
+    assert_eq!(px(127, 25), Some((0, 255)));
+    let out = automat(&dir, &["plot", "t.csv", "-o", "t.gif"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        text(&out.stderr),
+        "error: t.gif: the diagram is written as SVG or PNG; name the output `*.svg` or `*.png`\n"
+    );
+}
+
+/// Folders marked with `.automat-test-skip` (the deliberately failing
+/// fixtures), hidden folders and `target` are not searched; a marked
+/// folder named on the command line is.
+#[test]
+fn test_skips_marked_hidden_and_target_folders() {
+    let dir = tmp("skip");
+    let wrong = "name wrong\nduration 1s\nexpect at 1s M1D\n";
+    for sub in [".hidden", "target", "marked"] {
+        let p = dir.join(sub);
+        std::fs::create_dir_all(&p).expect("dir");
+        std::fs::write(p.join("wrong.scn"), wrong).expect("write");
+    }
+    std::fs::write(dir.join("marked/.automat-test-skip"), "").expect("write");
+    let out = automat(&dir, &["test"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert_eq!(
+        text(&out.stdout),
+        "skipped ./marked (.automat-test-skip)\n0 passed, 0 failed\n"
+    );
+    // Named on the command line, the marked folder is searched (and its
+    // scenario fails: it is in no project).
+    let out = automat(&dir, &["test", "marked"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stdout).starts_with("FAILED marked/wrong.scn\n"));
+    // The rule is in the help.
+    let help = text(&automat(&dir, &["test", "--help"]).stdout);
+    assert!(
+        help.contains("every folder holding a file named `.automat-test-skip`"),
+        "{help}"
+    );
+    // From the repository root, the failing fixtures are left out.
+    let out = automat(&root(), &["test", "crates/cli/tests"]);
+    assert_eq!(
+        text(&out.stdout),
+        "skipped crates/cli/tests/fixtures (.automat-test-skip)\n\
+         skipped crates/cli/tests/projects (.automat-test-skip)\n\
+         0 passed, 0 failed\n"
+    );
+}
+
+/// A chart's step flags are ordinary paths for `--trace` and `--print` in
+/// a project run (the SFC desugaring makes each step an instance with `X`).
+#[test]
+fn project_runs_trace_sfc_step_flags() {
+    let dir = tmp("sfc");
+    std::fs::write(
+        dir.join("automat.toml"),
+        "[project]\nname = \"sfc\"\n[plant]\nmodel = \"crane\"\n",
+    )
+    .expect("write");
+    std::fs::write(
+        dir.join("ctrl.st"),
+        "PROGRAM Ctrl
+VAR Pornire, l1, l2, l3, l4 : BOOL; M1S, M1D, M2S, M2J : BOOL; END_VAR
+    INITIAL_STEP Rest: END_STEP
+    TRANSITION FROM Rest TO Up := TRUE; END_TRANSITION
+    STEP Up: M2S(N); END_STEP
+    TRANSITION FROM Up TO Rest := Up.T >= T#10ms; END_TRANSITION
+END_PROGRAM
+",
+    )
+    .expect("write");
+    let out = automat(
+        &dir,
+        &[
+            "run",
+            ".",
+            "--cycles",
+            "4",
+            "--trace",
+            "Ctrl.Rest.X,Ctrl.Up.X,M2S",
+            "--trace-file",
+            "t.csv",
+            "--print",
+            "Ctrl.Up.X",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert_eq!(text(&out.stdout), "Ctrl.Up.X = FALSE\n");
+    // Scan 1: Rest -> Up. Scan 2: Up.T is 10 ms, M2S (N) is set, then
+    // Up -> Rest. Scan 3: M2S falls, Rest -> Up; and so on.
+    let csv = std::fs::read_to_string(dir.join("t.csv")).expect("trace");
+    assert_eq!(
+        csv,
+        "time,Ctrl.Rest.X,Ctrl.Up.X,M2S\n\
+         T#0s,FALSE,TRUE,FALSE\n\
+         T#10ms,TRUE,FALSE,TRUE\n\
+         T#20ms,FALSE,TRUE,FALSE\n\
+         T#30ms,TRUE,FALSE,TRUE\n"
+    );
+}

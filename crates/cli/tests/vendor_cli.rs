@@ -24,7 +24,12 @@ fn path(p: &Path) -> &str {
 #[test]
 fn check_needs_the_dialect_and_refuses_unknown_ones() {
     let mixer = example("isagraf_mixer");
-    assert_eq!(automat(&["check", "--lib", "isagraf", path(&mixer)]).status.code(), Some(0));
+    assert_eq!(
+        automat(&["check", "--lib", "isagraf", path(&mixer)])
+            .status
+            .code(),
+        Some(0)
+    );
     assert_eq!(automat(&["check", path(&mixer)]).status.code(), Some(1));
     let bad = automat(&["check", "--lib", "codesys", path(&mixer)]);
     assert_eq!(bad.status.code(), Some(2));
@@ -38,15 +43,42 @@ fn check_needs_the_dialect_and_refuses_unknown_ones() {
 fn run_with_a_dialect_prints_exact_values() {
     let drill = example("pl7_drill");
     let out = automat(&[
-        "run", "--lib", "pl7", path(&drill), "--cycles", "31", "--print", "holes", "--print",
+        "run",
+        "--lib",
+        "pl7",
+        path(&drill),
+        "--cycles",
+        "31",
+        "--print",
+        "holes",
+        "--print",
         "Chart._X1.X",
     ]);
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
-    assert_eq!(String::from_utf8_lossy(&out.stdout), "holes = 2\nChart._X1.X = TRUE\n");
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout),
+        "holes = 2\nChart._X1.X = TRUE\n"
+    );
     let mixer = example("isagraf_mixer");
     let out = automat(&[
-        "run", "--lib", "isagraf", path(&mixer), "--cycles", "45", "--print", "batches", "--print",
+        "run",
+        "--lib",
+        "isagraf",
+        path(&mixer),
+        "--cycles",
+        "45",
+        "--print",
+        "batches",
+        "--print",
         "mix_time",
     ]);
-    assert_eq!(String::from_utf8_lossy(&out.stdout), "batches = 1\nmix_time = T#210ms\n");
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout),
+        "batches = 1\nmix_time = T#210ms\n"
+    );
 }

@@ -72,11 +72,23 @@ pub fn compile(program: &Program) -> Result<Compiled, JitError> {
     let i64t = types::I64;
     let pou_sig = sig(&m, &[ptr, i64t], true);
     let mut ids: Vec<FuncId> = Vec::with_capacity(program.funcs.len());
-    for (i, _) in program.funcs.iter().enumerate() {
+    // The variant with every `This` access checked, for functions that have
+    // such accesses (see `Helpers::checked`).
+    let mut checked_ids: Vec<Option<(FuncId, u64)>> = Vec::with_capacity(program.funcs.len());
+    for (i, f) in program.funcs.iter().enumerate() {
         ids.push(
             m.declare_function(&format!("pou{i}"), Linkage::Local, &pou_sig)
                 .map_err(err)?,
         );
+        let extent = translate::this_extent(f);
+        checked_ids.push(if extent > 0 {
+            let id = m
+                .declare_function(&format!("pou{i}_checked"), Linkage::Local, &pou_sig)
+                .map_err(err)?;
+            Some((id, extent))
+        } else {
+            None
+        });
     }
     let fault = m
         .declare_function(
@@ -108,42 +120,52 @@ pub fn compile(program: &Program) -> Result<Compiled, JitError> {
         if !wanted.get(i).copied().unwrap_or(false) {
             continue;
         }
-        ctx.func.signature = pou_sig.clone();
-        ctx.func.name = UserFuncName::user(0, i as u32);
-        let callees: Vec<u32> = f
-            .code
-            .iter()
-            .filter_map(|inst| match inst {
-                Inst::Call { func, .. } => Some(*func),
+        let twin = checked_ids.get(i).copied().flatten();
+        // The checked variant first (when there is one), then the entry.
+        let variants = twin
+            .map(|(id, _)| (id, false))
+            .into_iter()
+            .chain([(*ids.get(i).ok_or_else(|| err("function ids"))?, true)]);
+        for (id, entry) in variants {
+            ctx.func.signature = pou_sig.clone();
+            ctx.func.name = UserFuncName::user(u32::from(!entry), i as u32);
+            let mut refs = Vec::new();
+            for inst in &f.code {
+                if let Inst::Call { func: c, .. } = inst {
+                    let cid = *ids
+                        .get(*c as usize)
+                        .ok_or_else(|| err(format!("no function {c}")))?;
+                    refs.push((*c, m.declare_func_in_func(cid, &mut ctx.func)));
+                }
+            }
+            let checked = match (entry, twin) {
+                (true, Some((cid, extent))) => {
+                    Some((m.declare_func_in_func(cid, &mut ctx.func), extent))
+                }
                 _ => None,
-            })
-            .collect();
-        let mut refs = Vec::with_capacity(callees.len());
-        for c in callees {
-            let id = *ids.get(c as usize).ok_or_else(|| err(format!("no function {c}")))?;
-            refs.push((c, m.declare_func_in_func(id, &mut ctx.func)));
+            };
+            let helpers = Helpers {
+                fault: m.declare_func_in_func(fault, &mut ctx.func),
+                builtin: m.declare_func_in_func(builtin, &mut ctx.func),
+                copy: m.declare_func_in_func(copy, &mut ctx.func),
+                callees: refs,
+                checked,
+                ptr,
+                target: m.target_config(),
+            };
+            translate::function(
+                &mut ctx.func,
+                &mut fctx,
+                f,
+                i as u32,
+                &helpers,
+                &mut builtins,
+                &program.funcs,
+            )?;
+            m.define_function(id, &mut ctx)
+                .map_err(|e| err(format!("{}: {e:?}", f.name)))?;
+            m.clear_context(&mut ctx);
         }
-        let helpers = Helpers {
-            fault: m.declare_func_in_func(fault, &mut ctx.func),
-            builtin: m.declare_func_in_func(builtin, &mut ctx.func),
-            copy: m.declare_func_in_func(copy, &mut ctx.func),
-            callees: refs,
-            ptr,
-        };
-        let target = m.target_config();
-        translate::function(
-            &mut ctx.func,
-            &mut fctx,
-            f,
-            i as u32,
-            &helpers,
-            &mut builtins,
-            target,
-        )?;
-        let id = *ids.get(i).ok_or_else(|| err("function ids"))?;
-        m.define_function(id, &mut ctx)
-            .map_err(|e| err(format!("{}: {e:?}", f.name)))?;
-        m.clear_context(&mut ctx);
     }
     m.finalize_definitions().map_err(err)?;
     let entries = ids

@@ -60,23 +60,28 @@ impl Tx<'_, '_> {
         }
     }
 
+    /// `(v as u32).wrapping_add(off)`, zero-extended: 32-bit arithmetic.
     fn wrap32(&mut self, v: Value, off: u32) -> Value {
-        let s = self.b.ins().iadd_imm_s(v, off as i64);
-        self.b.ins().band_imm_s(s, 0xFFFF_FFFF)
+        let n = self.b.ins().ireduce(types::I32, v);
+        let s = self.b.ins().iadd_imm_s(n, off as i32 as i64);
+        self.b.ins().uextend(types::I64, s)
     }
 
     /// A native pointer to `size` bytes at `a`, bounds-checked unless the
     /// address is absolute (verified).
     fn pointer(&mut self, a: Addr, size: u32, what: i64, ty: MemTy) -> Value {
-        if a.base == Base::Abs || (a.base == Base::This && std::env::var("HACK").is_ok()) {
-            let at = self.offset(a); return self.b.ins().iadd(self.image, at);
+        if a.base == Base::Abs {
+            return self.b.ins().iadd_imm_s(self.image, a.offset as i64);
+        }
+        if a.base == Base::This && self.this_safe {
+            // The entry check proved this + offset + size <= image length
+            // (`translate.rs`), so the u32 sum does not wrap either.
+            let at = self.b.ins().iadd_imm_s(self.this, a.offset as i64);
+            return self.b.ins().iadd(self.image, at);
         }
         let at = self.offset(a);
         let end = self.b.ins().iadd_imm_s(at, size as i64);
-        let out = self
-            .b
-            .ins()
-            .icmp(IntCC::UnsignedGreaterThan, end, self.len);
+        let out = self.b.ins().icmp(IntCC::UnsignedGreaterThan, end, self.len);
         let code = self.iconst(rt::mem_ty_code(ty));
         let zero = self.iconst(0);
         self.fault_if(out, rt::F_MEMORY, what, [at, code, zero]);
@@ -518,7 +523,9 @@ impl Tx<'_, '_> {
             let class = self.class(*r)?;
             let v = self.get(*r)?;
             let bits = self.bits(v, class);
-            self.b.ins().stack_store(self.h.ptr, bits, slots, i as i32 * 8);
+            self.b
+                .ins()
+                .stack_store(self.h.ptr, bits, slots, i as i32 * 8);
         }
         let index = self.builtins.len() as i64;
         self.builtins.push(BuiltinCall {

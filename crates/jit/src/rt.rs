@@ -107,7 +107,16 @@ pub unsafe extern "C" fn jit_fault(
     // SAFETY: `shared` and its program outlive the run (owned by the Jit).
     let shared = unsafe { &*ctx.shared };
     let program = unsafe { &*shared.program };
-    ctx.fault = Some(make_fault(program, shared.budget, kind, func, site, a, b, c));
+    ctx.fault = Some(make_fault(
+        program,
+        shared.budget,
+        kind,
+        func,
+        site,
+        a,
+        b,
+        c,
+    ));
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -219,7 +228,13 @@ pub unsafe extern "C" fn jit_builtin(ctx: *mut RunCtx, index: i64, slots: *mut u
 ///
 /// # Safety
 /// `ctx` as for [`jit_fault`].
-pub unsafe extern "C" fn jit_copy(ctx: *mut RunCtx, func: i64, dst: i64, src: i64, len: i64) -> i32 {
+pub unsafe extern "C" fn jit_copy(
+    ctx: *mut RunCtx,
+    func: i64,
+    dst: i64,
+    src: i64,
+    len: i64,
+) -> i32 {
     // SAFETY: see the function's contract.
     let ctx = unsafe { &mut *ctx };
     // SAFETY: the image pointer and length describe the Jit's image.

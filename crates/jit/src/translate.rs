@@ -29,7 +29,11 @@ pub struct Helpers {
     pub copy: FuncRef,
     /// (IR function index, reference) of every callee.
     pub callees: Vec<(u32, FuncRef)>,
+    /// For the fast variant of a function with `This` accesses: the
+    /// checked variant, run when the entry check fails, and the extent.
+    pub checked: Option<(FuncRef, u64)>,
     pub ptr: Type,
+    pub target: cranelift_codegen::isa::TargetFrontendConfig,
 }
 
 pub(crate) struct Tx<'a, 'b> {
@@ -46,6 +50,35 @@ pub(crate) struct Tx<'a, 'b> {
     /// Argument slots of builtins (sized to the largest call).
     pub slots: Option<StackSlot>,
     pub builtins: &'a mut Vec<BuiltinCall>,
+    /// `This` accesses need no check: the entry proved them in the image.
+    pub this_safe: bool,
+    /// Every function of the program (for inlining).
+    pub funcs: &'a [Func],
+    /// Inside an inlined callee: where its `Ret` continues.
+    pub ret_to: Option<cranelift_codegen::ir::Block>,
+    /// Instructions inlined so far into this function (bounded).
+    pub inlined: usize,
+}
+
+/// Callees at most this long, without calls of their own, are inlined.
+const INLINE_MAX: usize = 64;
+/// At most this many instructions are inlined into one function, so the
+/// compile time of a program stays proportional to its size.
+const INLINE_BUDGET: usize = 4096;
+
+/// Whether calls of `f` are inlined: a small leaf (no calls).
+fn inlinable(f: &Func) -> bool {
+    f.code.len() <= INLINE_MAX && !f.code.iter().any(|i| matches!(i, Inst::Call { .. }))
+}
+
+fn max_builtin_args(f: &Func) -> Option<u32> {
+    f.code
+        .iter()
+        .filter_map(|i| match i {
+            Inst::Builtin { count, .. } => Some(*count as u32 + 1),
+            _ => None,
+        })
+        .max()
 }
 
 pub fn class_type(c: RegClass) -> Type {
@@ -60,6 +93,22 @@ pub fn class_type(c: RegClass) -> Type {
 /// bounds check (or the verifier) has made every access valid.
 pub fn mem() -> MemFlagsData {
     MemFlagsData::new().with_notrap()
+}
+
+/// The end of the furthest `This` access of `f` (0: none), as an offset
+/// from `this`.
+pub fn this_extent(f: &Func) -> u64 {
+    f.code
+        .iter()
+        .filter_map(|inst| match *inst {
+            Inst::Load { ty, addr, .. } | Inst::Store { ty, addr, .. } => Some((addr, ty.size())),
+            Inst::LoadBit { addr, .. } | Inst::StoreBit { addr, .. } => Some((addr, 1)),
+            _ => None,
+        })
+        .filter(|(a, _)| a.base == automat_ir::code::Base::This)
+        .map(|(a, size)| a.offset as u64 + size as u64)
+        .max()
+        .unwrap_or(0)
 }
 
 /// Instruction indexes that start a basic block.
@@ -102,7 +151,7 @@ pub fn function(
     index: u32,
     h: &Helpers,
     builtins: &mut Vec<BuiltinCall>,
-    target: cranelift_codegen::isa::TargetFrontendConfig,
+    funcs: &[Func],
 ) -> Result<(), JitError> {
     let mut b = FunctionBuilder::new(func, fctx);
     let entry = b.create_block();
@@ -112,19 +161,45 @@ pub fn function(
     let (Some(&ctx), Some(&this)) = (params.first(), params.get(1)) else {
         return Err(JitError::Backend("function parameters".into()));
     };
-    let vars = f.regs.iter().map(|c| b.declare_var(class_type(*c))).collect();
+    let vars = f
+        .regs
+        .iter()
+        .map(|c| b.declare_var(class_type(*c)))
+        .collect();
     let left = b.declare_var(types::I64);
     let image = b.ins().load(h.ptr, mem(), ctx, rt::OFF_IMAGE);
     let len = b.ins().load(types::I64, mem(), ctx, rt::OFF_LEN);
+    if let Some((checked, extent)) = h.checked {
+        // Every `This` access of the function lies in this..this+extent:
+        // when that is inside the image they all are and run unchecked;
+        // otherwise the checked variant runs and faults where the
+        // interpreter would.
+        let end = b.ins().iadd_imm_s(this, extent as i64);
+        let out = b.ins().icmp(IntCC::UnsignedGreaterThan, end, len);
+        let slow = b.create_block();
+        let go = b.create_block();
+        b.set_cold_block(slow);
+        b.ins().brif(out, slow, &[], go, &[]);
+        b.switch_to_block(slow);
+        let call = b.ins().call(checked, &[ctx, this]);
+        let st = b.inst_results(call).to_vec();
+        b.ins().return_(&st);
+        b.switch_to_block(go);
+    }
     let l0 = b.ins().load(types::I64, mem(), ctx, rt::OFF_LEFT);
     b.def_var(left, l0);
+    // Slots for the builtins of the function and of the callees it inlines.
     let max_args = f
         .code
         .iter()
         .filter_map(|i| match i {
-            Inst::Builtin { count, .. } => Some(*count as u32 + 1),
+            Inst::Call { func, .. } => funcs
+                .get(*func as usize)
+                .filter(|c| inlinable(c))
+                .and_then(max_builtin_args),
             _ => None,
         })
+        .chain(max_builtin_args(f))
         .max();
     let slots = max_args.map(|n| {
         b.create_sized_stack_slot(StackSlotData::new(StackSlotKind::ExplicitSlot, n * 8, 3))
@@ -142,10 +217,14 @@ pub fn function(
         len,
         slots,
         builtins,
+        this_safe: h.checked.is_some(),
+        funcs,
+        ret_to: None,
+        inlined: 0,
     };
     tx.body()?;
     tx.b.seal_all_blocks();
-    tx.b.finalize(target);
+    tx.b.finalize(h.target);
     Ok(())
 }
 
@@ -231,7 +310,10 @@ impl Tx<'_, '_> {
             self.b.switch_to_block(block);
             self.charge(start, end)?;
             for pc in start..end {
-                let inst = code.get(pc).copied().ok_or_else(|| JitError::Backend("pc".into()))?;
+                let inst = code
+                    .get(pc)
+                    .copied()
+                    .ok_or_else(|| JitError::Backend("pc".into()))?;
                 self.control(&inst, pc as u32, &block_at)?;
             }
             if !code.get(end - 1).is_some_and(is_terminator) {
@@ -305,6 +387,11 @@ impl Tx<'_, '_> {
                 let no: &[BlockArg] = &[];
                 self.b.ins().brif(c, t, no, e, no);
             }
+            Inst::Ret if self.ret_to.is_some() => {
+                if let Some(b) = self.ret_to {
+                    self.b.ins().jump(b, &[]);
+                }
+            }
             Inst::Ret => {
                 self.store_left();
                 let zero = self.b.ins().iconst(types::I32, 0);
@@ -319,6 +406,14 @@ impl Tx<'_, '_> {
                     .map(|(_, r)| *r)
                     .ok_or_else(|| JitError::Backend(format!("callee {func} at {pc}")))?;
                 let t = self.offset(this);
+                let cont = self.b.create_block();
+                if let Some(g) = self
+                    .funcs
+                    .get(func as usize)
+                    .filter(|g| inlinable(g) && self.inlined + g.code.len() <= INLINE_BUDGET)
+                {
+                    self.inline(g, func, t, cont)?;
+                }
                 self.store_left();
                 let call = self.b.ins().call(callee, &[self.ctx, t]);
                 let status = self
@@ -328,14 +423,65 @@ impl Tx<'_, '_> {
                     .copied()
                     .ok_or_else(|| JitError::Backend("call result".into()))?;
                 self.propagate(status);
-                let l = self
-                    .b
-                    .ins()
-                    .load(types::I64, mem(), self.ctx, rt::OFF_LEFT);
+                let l = self.b.ins().load(types::I64, mem(), self.ctx, rt::OFF_LEFT);
                 self.b.def_var(self.left, l);
+                self.b.ins().jump(cont, &[]);
+                self.b.switch_to_block(cont);
             }
             _ => self.emit(inst)?,
         }
+        Ok(())
+    }
+}
+
+impl<'a> Tx<'a, '_> {
+    /// Compiles the body of callee `g` (function `index`) in place with
+    /// `this` = `t`, when every `This` access of it is inside the image;
+    /// otherwise falls through to the ordinary call, whose checked variant
+    /// faults exactly. Its faults name `g` and its own instruction, as the
+    /// interpreter's do; its `Ret` continues at `cont`.
+    fn inline(
+        &mut self,
+        g: &'a Func,
+        index: u32,
+        t: Value,
+        cont: cranelift_codegen::ir::Block,
+    ) -> Result<(), JitError> {
+        let extent = this_extent(g);
+        let end = self.b.ins().iadd_imm_s(t, extent as i64);
+        let ok = self
+            .b
+            .ins()
+            .icmp(IntCC::UnsignedLessThanOrEqual, end, self.len);
+        let inline = self.b.create_block();
+        let call = self.b.create_block();
+        self.b.ins().brif(ok, inline, &[], call, &[]);
+        self.b.switch_to_block(inline);
+        let vars = g
+            .regs
+            .iter()
+            .map(|c| self.b.declare_var(class_type(*c)))
+            .collect();
+        let saved = (
+            std::mem::replace(&mut self.f, g),
+            std::mem::replace(&mut self.index, index),
+            std::mem::replace(&mut self.this, t),
+            std::mem::replace(&mut self.vars, vars),
+            std::mem::replace(&mut self.this_safe, true),
+            self.ret_to.replace(cont),
+        );
+        self.inlined += g.code.len();
+        let r = self.body();
+        (
+            self.f,
+            self.index,
+            self.this,
+            self.vars,
+            self.this_safe,
+            self.ret_to,
+        ) = saved;
+        r?;
+        self.b.switch_to_block(call);
         Ok(())
     }
 }

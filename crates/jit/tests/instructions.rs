@@ -81,16 +81,36 @@ fn c(dst: u32, value: i64) -> Inst {
 #[test]
 fn integer_arithmetic_and_wraps() {
     let mut code = vec![c(0, 7), c(1, -3)];
-    let ops = [IntOp::Add, IntOp::Sub, IntOp::Mul, IntOp::And, IntOp::Or, IntOp::Xor];
+    let ops = [
+        IntOp::Add,
+        IntOp::Sub,
+        IntOp::Mul,
+        IntOp::And,
+        IntOp::Or,
+        IntOp::Xor,
+    ];
     for (i, op) in ops.iter().enumerate() {
-        code.push(Inst::Int { op: *op, dst: 2, a: 0, b: 1 });
+        code.push(Inst::Int {
+            op: *op,
+            dst: 2,
+            a: 0,
+            b: 1,
+        });
         code.push(st(2, 8 * i as u32));
     }
     code.push(c(3, 300));
-    code.push(Inst::Wrap { dst: 2, src: 3, ty: MemTy::U8 });
+    code.push(Inst::Wrap {
+        dst: 2,
+        src: 3,
+        ty: MemTy::U8,
+    });
     code.push(st(2, 48));
     code.push(c(3, 32768));
-    code.push(Inst::Wrap { dst: 2, src: 3, ty: MemTy::I16 });
+    code.push(Inst::Wrap {
+        dst: 2,
+        src: 3,
+        ty: MemTy::I16,
+    });
     code.push(st(2, 56));
     code.push(Inst::Neg { dst: 2, src: 1 });
     code.push(st(2, 64));
@@ -114,9 +134,21 @@ fn division_and_remainder() {
     let mut code = Vec::new();
     for (i, (signed, a, b)) in cases.iter().enumerate() {
         code.extend([c(0, *a), c(1, *b)]);
-        code.push(Inst::Div { signed: *signed, dst: 2, a: 0, b: 1, site: 0 });
+        code.push(Inst::Div {
+            signed: *signed,
+            dst: 2,
+            a: 0,
+            b: 1,
+            site: 0,
+        });
         code.push(st(2, 16 * i as u32));
-        code.push(Inst::Rem { signed: *signed, dst: 2, a: 0, b: 1, site: 0 });
+        code.push(Inst::Rem {
+            signed: *signed,
+            dst: 2,
+            a: 0,
+            b: 1,
+            site: 0,
+        });
         code.push(st(2, 16 * i as u32 + 8));
     }
     code.push(Inst::Ret);
@@ -135,7 +167,13 @@ fn division_by_zero_faults_after_earlier_stores() {
         c(0, 5),
         st(0, 0),
         c(1, 0),
-        Inst::Rem { signed: true, dst: 2, a: 0, b: 1, site: 1 },
+        Inst::Rem {
+            signed: true,
+            dst: 2,
+            a: 0,
+            b: 1,
+            site: 1,
+        },
         st(2, 8),
         Inst::Ret,
     ];
@@ -163,7 +201,13 @@ fn shifts_and_rotations() {
     let mut code = Vec::new();
     for (i, (op, w, a, n, _)) in cases.iter().enumerate() {
         code.extend([c(0, *a), c(1, *n)]);
-        code.push(Inst::Shift { op: *op, width: *w, dst: 2, a: 0, n: 1 });
+        code.push(Inst::Shift {
+            op: *op,
+            width: *w,
+            dst: 2,
+            a: 0,
+            n: 1,
+        });
         code.push(st(2, 8 * i as u32));
     }
     code.push(Inst::Ret);
@@ -181,12 +225,33 @@ fn compares_and_branches() {
         c(2, 0),
         c(3, 1),
         c(4, 10),
-        Inst::Int { op: IntOp::Add, dst: 2, a: 2, b: 3 },
-        Inst::ICmp { cmp: Cmp::Lt, signed: true, dst: 5, a: 2, b: 4 },
-        Inst::Branch { cond: 5, then: 3, els: 6 },
+        Inst::Int {
+            op: IntOp::Add,
+            dst: 2,
+            a: 2,
+            b: 3,
+        },
+        Inst::ICmp {
+            cmp: Cmp::Lt,
+            signed: true,
+            dst: 5,
+            a: 2,
+            b: 4,
+        },
+        Inst::Branch {
+            cond: 5,
+            then: 3,
+            els: 6,
+        },
         st(2, 0),
         c(0, -1),
-        Inst::ICmp { cmp: Cmp::Gt, signed: false, dst: 5, a: 0, b: 3 },
+        Inst::ICmp {
+            cmp: Cmp::Gt,
+            signed: false,
+            dst: 5,
+            a: 0,
+            b: 3,
+        },
         st(5, 8),
         Inst::Jump { target: 11 },
         Inst::Ret,
@@ -200,22 +265,82 @@ fn compares_and_branches() {
 fn floats() {
     let code = vec![
         Inst::F64Const { dst: 0, value: 1.5 },
-        Inst::F64Const { dst: 1, value: 0.25 },
-        Inst::Float { op: FloatOp::Div, wide: true, dst: 2, a: 0, b: 1 },
-        Inst::Store { src: 2, ty: MemTy::F64, addr: Addr::abs(0) },
+        Inst::F64Const {
+            dst: 1,
+            value: 0.25,
+        },
+        Inst::Float {
+            op: FloatOp::Div,
+            wide: true,
+            dst: 2,
+            a: 0,
+            b: 1,
+        },
+        Inst::Store {
+            src: 2,
+            ty: MemTy::F64,
+            addr: Addr::abs(0),
+        },
         Inst::F32Const { dst: 3, value: 0.1 },
-        Inst::Float { op: FloatOp::Mul, wide: false, dst: 4, a: 3, b: 3 },
-        Inst::Store { src: 4, ty: MemTy::F32, addr: Addr::abs(8) },
-        Inst::FResize { to_wide: true, dst: 2, src: 4 },
-        Inst::Store { src: 2, ty: MemTy::F64, addr: Addr::abs(12) },
-        Inst::FCmp { cmp: Cmp::Lt, wide: true, dst: 5, a: 1, b: 0 },
+        Inst::Float {
+            op: FloatOp::Mul,
+            wide: false,
+            dst: 4,
+            a: 3,
+            b: 3,
+        },
+        Inst::Store {
+            src: 4,
+            ty: MemTy::F32,
+            addr: Addr::abs(8),
+        },
+        Inst::FResize {
+            to_wide: true,
+            dst: 2,
+            src: 4,
+        },
+        Inst::Store {
+            src: 2,
+            ty: MemTy::F64,
+            addr: Addr::abs(12),
+        },
+        Inst::FCmp {
+            cmp: Cmp::Lt,
+            wide: true,
+            dst: 5,
+            a: 1,
+            b: 0,
+        },
         st(5, 20),
-        Inst::F64Const { dst: 0, value: f64::NAN },
-        Inst::FCmp { cmp: Cmp::Ne, wide: true, dst: 5, a: 0, b: 0 },
+        Inst::F64Const {
+            dst: 0,
+            value: f64::NAN,
+        },
+        Inst::FCmp {
+            cmp: Cmp::Ne,
+            wide: true,
+            dst: 5,
+            a: 0,
+            b: 0,
+        },
         st(5, 28),
-        Inst::Load { dst: 4, ty: MemTy::F32, addr: Addr::abs(8) },
-        Inst::Builtin { op: Builtin::Math(MathFn::Sqrt, false), dst: Some(3), first: 0, count: 1, site: 0 },
-        Inst::Store { src: 3, ty: MemTy::F32, addr: Addr::abs(36) },
+        Inst::Load {
+            dst: 4,
+            ty: MemTy::F32,
+            addr: Addr::abs(8),
+        },
+        Inst::Builtin {
+            op: Builtin::Math(MathFn::Sqrt, false),
+            dst: Some(3),
+            first: 0,
+            count: 1,
+            site: 0,
+        },
+        Inst::Store {
+            src: 3,
+            ty: MemTy::F32,
+            addr: Addr::abs(36),
+        },
         Inst::Ret,
     ];
     let mut f = func(&[F64, F64, F64, F32, F32, I64], code);
@@ -225,9 +350,15 @@ fn floats() {
     assert_eq!(f64::from_le_bytes(img[0..8].try_into().unwrap()), 6.0);
     let sq = 0.1f32 * 0.1f32;
     assert_eq!(f32::from_le_bytes(img[8..12].try_into().unwrap()), sq);
-    assert_eq!(f64::from_le_bytes(img[12..20].try_into().unwrap()), sq as f64);
+    assert_eq!(
+        f64::from_le_bytes(img[12..20].try_into().unwrap()),
+        sq as f64
+    );
     assert_eq!((i64_at(&img, 20), i64_at(&img, 28)), (1, 1));
-    assert_eq!(f32::from_le_bytes(img[36..40].try_into().unwrap()), sq.sqrt());
+    assert_eq!(
+        f32::from_le_bytes(img[36..40].try_into().unwrap()),
+        sq.sqrt()
+    );
 }
 
 #[test]
@@ -237,17 +368,52 @@ fn memory_widths_bits_copy_and_this() {
     init[2..4].copy_from_slice(&0xFFFFu16.to_le_bytes());
     init[40] = 0b0000_0100;
     let code = vec![
-        Inst::Load { dst: 0, ty: MemTy::I8, addr: Addr::abs(0) },
+        Inst::Load {
+            dst: 0,
+            ty: MemTy::I8,
+            addr: Addr::abs(0),
+        },
         st(0, 8),
-        Inst::Load { dst: 0, ty: MemTy::U16, addr: Addr::abs(2) },
-        Inst::Store { src: 0, ty: MemTy::U32, addr: Addr::abs(16) },
-        Inst::LoadBit { dst: 1, addr: Addr::abs(40), bit: 2 },
-        Inst::StoreBit { src: 1, addr: Addr::abs(40), bit: 7 },
+        Inst::Load {
+            dst: 0,
+            ty: MemTy::U16,
+            addr: Addr::abs(2),
+        },
+        Inst::Store {
+            src: 0,
+            ty: MemTy::U32,
+            addr: Addr::abs(16),
+        },
+        Inst::LoadBit {
+            dst: 1,
+            addr: Addr::abs(40),
+            bit: 2,
+        },
+        Inst::StoreBit {
+            src: 1,
+            addr: Addr::abs(40),
+            bit: 7,
+        },
         c(2, 0),
-        Inst::StoreBit { src: 2, addr: Addr::abs(40), bit: 2 },
-        Inst::Copy { dst: Addr::abs(24), src: Addr::abs(8), len: 12 },
-        Inst::AddrOf { dst: 3, addr: Addr::this(5) },
-        Inst::Store { src: 3, ty: MemTy::I16, addr: Addr::reg(3, 36) },
+        Inst::StoreBit {
+            src: 2,
+            addr: Addr::abs(40),
+            bit: 2,
+        },
+        Inst::Copy {
+            dst: Addr::abs(24),
+            src: Addr::abs(8),
+            len: 12,
+        },
+        Inst::AddrOf {
+            dst: 3,
+            addr: Addr::this(5),
+        },
+        Inst::Store {
+            src: 3,
+            ty: MemTy::I16,
+            addr: Addr::reg(3, 36),
+        },
         Inst::Ret,
     ];
     let (r, img) = both(program(vec![func(&[I64; 4], code)], init), None);
@@ -264,12 +430,19 @@ fn memory_widths_bits_copy_and_this() {
 fn access_outside_the_image_faults_like_the_interpreter() {
     let code = vec![
         c(0, 1000),
-        Inst::Load { dst: 1, ty: MemTy::I32, addr: Addr::reg(0, 0) },
+        Inst::Load {
+            dst: 1,
+            ty: MemTy::I32,
+            addr: Addr::reg(0, 0),
+        },
         Inst::Ret,
     ];
     let (r, _) = both(program(vec![func(&[I64; 2], code)], vec![0; 8]), None);
     let f = r.unwrap_err();
-    assert_eq!((f.kind, f.message.as_str()), (FaultKind::Function, "load of I32 at 1000 outside the image"));
+    assert_eq!(
+        (f.kind, f.message.as_str()),
+        (FaultKind::Function, "load of I32 at 1000 outside the image")
+    );
 }
 
 #[test]
@@ -277,9 +450,21 @@ fn checks() {
     let prog = |v: i64, dynamic: bool| {
         let mut code = vec![c(0, v), c(1, -2), c(2, 5)];
         code.push(if dynamic {
-            Inst::CheckDyn { kind: CheckKind::Index, val: 0, lo: 1, hi: 2, site: 1 }
+            Inst::CheckDyn {
+                kind: CheckKind::Index,
+                val: 0,
+                lo: 1,
+                hi: 2,
+                site: 1,
+            }
         } else {
-            Inst::Check { kind: CheckKind::Subrange, val: 0, lo: -2, hi: 5, site: 1 }
+            Inst::Check {
+                kind: CheckKind::Subrange,
+                val: 0,
+                lo: -2,
+                hi: 5,
+                site: 1,
+            }
         });
         code.extend([st(0, 0), Inst::Ret]);
         program(vec![func(&[I64; 3], code)], vec![0; 8])
@@ -289,7 +474,10 @@ fn checks() {
         assert!(both(prog(v, true), None).0.is_ok());
     }
     let f = both(prog(6, false), None).0.unwrap_err();
-    assert_eq!((f.kind, f.message.as_str()), (FaultKind::SubrangeViolation, "value 6 outside -2..5"));
+    assert_eq!(
+        (f.kind, f.message.as_str()),
+        (FaultKind::SubrangeViolation, "value 6 outside -2..5")
+    );
     let f = both(prog(i64::MIN, true), None).0.unwrap_err();
     assert_eq!(f.kind, FaultKind::IndexOutOfBounds);
     assert_eq!(f.site.location, "t.st:2:5");
@@ -298,16 +486,46 @@ fn checks() {
 #[test]
 fn calls_with_instances_and_now() {
     // F0 calls F1 with this = 16 twice; F1 increments this.0 and stores now at this.8.
-    let f0 = func(&[], vec![Inst::Call { func: 1, this: Addr::abs(16) }, Inst::Call { func: 1, this: Addr::abs(16) }, Inst::Ret]);
+    let f0 = func(
+        &[],
+        vec![
+            Inst::Call {
+                func: 1,
+                this: Addr::abs(16),
+            },
+            Inst::Call {
+                func: 1,
+                this: Addr::abs(16),
+            },
+            Inst::Ret,
+        ],
+    );
     let f1 = func(
         &[I64; 3],
         vec![
-            Inst::Load { dst: 0, ty: MemTy::I64, addr: Addr::this(0) },
+            Inst::Load {
+                dst: 0,
+                ty: MemTy::I64,
+                addr: Addr::this(0),
+            },
             c(1, 1),
-            Inst::Int { op: IntOp::Add, dst: 0, a: 0, b: 1 },
-            Inst::Store { src: 0, ty: MemTy::I64, addr: Addr::this(0) },
+            Inst::Int {
+                op: IntOp::Add,
+                dst: 0,
+                a: 0,
+                b: 1,
+            },
+            Inst::Store {
+                src: 0,
+                ty: MemTy::I64,
+                addr: Addr::this(0),
+            },
             Inst::Now { dst: 2 },
-            Inst::Store { src: 2, ty: MemTy::I64, addr: Addr::this(8) },
+            Inst::Store {
+                src: 2,
+                ty: MemTy::I64,
+                addr: Addr::this(8),
+            },
             Inst::Ret,
         ],
     );
@@ -327,11 +545,33 @@ fn string_builtins_through_the_shared_implementation() {
             c(0, 10),
             c(1, 8),
             c(2, 0),
-            Inst::Builtin { op: Builtin::Str(StrFn::Concat, false), dst: None, first: 0, count: 4, site: 0 },
-            Inst::Builtin { op: Builtin::Str(StrFn::Len, false), dst: Some(3), first: 4, count: 1, site: 0 },
-            Inst::Store { src: 3, ty: MemTy::I16, addr: Addr::abs(20) },
+            Inst::Builtin {
+                op: Builtin::Str(StrFn::Concat, false),
+                dst: None,
+                first: 0,
+                count: 4,
+                site: 0,
+            },
+            Inst::Builtin {
+                op: Builtin::Str(StrFn::Len, false),
+                dst: Some(3),
+                first: 4,
+                count: 1,
+                site: 0,
+            },
+            Inst::Store {
+                src: 3,
+                ty: MemTy::I16,
+                addr: Addr::abs(20),
+            },
             c(4, 9),
-            Inst::Builtin { op: Builtin::Str(StrFn::Mid, false), dst: None, first: 5, count: 5, site: 1 },
+            Inst::Builtin {
+                op: Builtin::Str(StrFn::Mid, false),
+                dst: None,
+                first: 5,
+                count: 5,
+                site: 1,
+            },
             Inst::Ret,
         ],
     );
@@ -351,11 +591,29 @@ fn watchdog_faults_at_the_interpreters_instruction() {
         &[I64; 2],
         vec![
             c(1, 1),
-            Inst::Load { dst: 0, ty: MemTy::I64, addr: Addr::abs(0) },
-            Inst::Int { op: IntOp::Add, dst: 0, a: 0, b: 1 },
+            Inst::Load {
+                dst: 0,
+                ty: MemTy::I64,
+                addr: Addr::abs(0),
+            },
+            Inst::Int {
+                op: IntOp::Add,
+                dst: 0,
+                a: 0,
+                b: 1,
+            },
             st(0, 0),
-            Inst::Load { dst: 0, ty: MemTy::I64, addr: Addr::abs(8) },
-            Inst::Int { op: IntOp::Sub, dst: 0, a: 0, b: 1 },
+            Inst::Load {
+                dst: 0,
+                ty: MemTy::I64,
+                addr: Addr::abs(8),
+            },
+            Inst::Int {
+                op: IntOp::Sub,
+                dst: 0,
+                a: 0,
+                b: 1,
+            },
             st(0, 8),
             Inst::Jump { target: 1 },
             Inst::Ret,
@@ -366,23 +624,47 @@ fn watchdog_faults_at_the_interpreters_instruction() {
         let (r, _) = both(program(vec![f.clone()], vec![0; 16]), Some(budget));
         let fault = r.unwrap_err();
         assert_eq!(fault.kind, FaultKind::Watchdog);
-        assert_eq!(fault.message, format!("watchdog: more than {budget} instructions in one run"));
+        assert_eq!(
+            fault.message,
+            format!("watchdog: more than {budget} instructions in one run")
+        );
     }
 }
 
 #[test]
 fn watchdog_counts_instructions_of_callees() {
-    let f0 = func(&[], vec![Inst::Call { func: 1, this: Addr::abs(0) }, Inst::Jump { target: 0 }]);
+    let f0 = func(
+        &[],
+        vec![
+            Inst::Call {
+                func: 1,
+                this: Addr::abs(0),
+            },
+            Inst::Jump { target: 0 },
+        ],
+    );
     let f1 = func(&[I64; 1], vec![c(0, 1), st(0, 0), Inst::Ret]);
     for budget in [1, 2, 3, 4, 5, 9, 10, 11] {
-        let (r, _) = both(program(vec![f0.clone(), f1.clone()], vec![0; 8]), Some(budget));
+        let (r, _) = both(
+            program(vec![f0.clone(), f1.clone()], vec![0; 8]),
+            Some(budget),
+        );
         assert_eq!(r.unwrap_err().kind, FaultKind::Watchdog);
     }
 }
 
 #[test]
 fn recursion_is_refused_with_a_reason() {
-    let f0 = func(&[], vec![Inst::Call { func: 0, this: Addr::abs(0) }, Inst::Ret]);
+    let f0 = func(
+        &[],
+        vec![
+            Inst::Call {
+                func: 0,
+                this: Addr::abs(0),
+            },
+            Inst::Ret,
+        ],
+    );
     match Jit::new(program(vec![f0], vec![0; 8])) {
         Err(JitError::Unsupported(m)) => assert!(m.contains("recursive call of F"), "{m}"),
         Err(e) => panic!("{e}"),
@@ -393,5 +675,83 @@ fn recursion_is_refused_with_a_reason() {
 #[test]
 fn an_invalid_program_is_refused() {
     let f0 = func(&[], vec![Inst::Jump { target: 9 }]);
-    assert!(matches!(Jit::new(program(vec![f0], vec![0; 8])), Err(JitError::Invalid(_))));
+    assert!(matches!(
+        Jit::new(program(vec![f0], vec![0; 8])),
+        Err(JitError::Invalid(_))
+    ));
+}
+
+#[test]
+fn inlined_callees_fault_as_themselves() {
+    // F1 (small, inlined) divides this.0 by this.8; F0 calls it twice, the
+    // second time on an instance whose divisor is 0; and once with a `this`
+    // outside the image (the out-of-line checked variant runs).
+    let f1 = func(
+        &[I64; 3],
+        vec![
+            Inst::Load {
+                dst: 0,
+                ty: MemTy::I64,
+                addr: Addr::this(0),
+            },
+            Inst::Load {
+                dst: 1,
+                ty: MemTy::I64,
+                addr: Addr::this(8),
+            },
+            Inst::Div {
+                signed: true,
+                dst: 2,
+                a: 0,
+                b: 1,
+                site: 1,
+            },
+            Inst::Store {
+                src: 2,
+                ty: MemTy::I64,
+                addr: Addr::this(16),
+            },
+            Inst::Ret,
+        ],
+    );
+    let mut init = vec![0u8; 48];
+    init[0] = 9;
+    init[8] = 3;
+    let prog = |second: u32| {
+        let f0 = func(
+            &[],
+            vec![
+                Inst::Call {
+                    func: 1,
+                    this: Addr::abs(0),
+                },
+                Inst::Call {
+                    func: 1,
+                    this: Addr::abs(second),
+                },
+                Inst::Ret,
+            ],
+        );
+        program(vec![f0, f1.clone()], init.clone())
+    };
+    let (r, img) = both(prog(24), None);
+    let f = r.unwrap_err();
+    assert_eq!(
+        (f.kind, f.site.location.as_str()),
+        (FaultKind::DivisionByZero, "t.st:2:5")
+    );
+    assert_eq!(i64_at(&img, 16), 3);
+    let (r, _) = both(prog(40), None);
+    let f = r.unwrap_err();
+    assert_eq!(
+        (f.kind, f.message.as_str()),
+        (FaultKind::Function, "load of I64 at 48 outside the image")
+    );
+    assert_eq!(f.site.pou, "F");
+    // The watchdog inside the inlined callee, at every budget.
+    // Call, 5 instructions, Call, 5 instructions, Ret: 13.
+    for budget in 1..16 {
+        let (r, _) = both(prog(0), Some(budget));
+        assert_eq!(r.is_err(), budget < 13, "budget {budget}");
+    }
 }

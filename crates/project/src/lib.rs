@@ -8,6 +8,7 @@
 //! - [`sim`]: the coupling of the model to the scan, with overrides
 //!   (stuck sensors and actuators, noise) and timed [`sim::Action`]s.
 //! - [`exec`]: a backend wrapped so the runtime's scan loop drives the plant.
+//! - [`steps`]: the active steps of the program's charts (live view).
 //!
 //! The contract the plant models follow is in `crates/plant/README.md`.
 
@@ -17,6 +18,7 @@ pub mod exec;
 pub mod file;
 pub mod image;
 pub mod sim;
+pub mod steps;
 
 pub use bind::{bind, Binding};
 pub use exec::PlantExec;

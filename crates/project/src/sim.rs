@@ -74,6 +74,8 @@ pub struct Sim {
     pub errors: Vec<(i64, String)>,
     /// PLC time of the last sync.
     pub now_ns: i64,
+    /// The PLC stopped on a fault ([`Sim::safe_state`]).
+    halted: bool,
 }
 
 impl Sim {
@@ -105,6 +107,7 @@ impl Sim {
             next_action: 0,
             errors: Vec::new(),
             now_ns: 0,
+            halted: false,
         }
     }
 
@@ -146,6 +149,7 @@ impl Sim {
             };
             let v = match self.stuck.get(b.signal).copied().flatten() {
                 Some(v) => Some(v),
+                None if self.halted => self.safe_value(b.signal),
                 None => image::read(image, &b.place),
             };
             if let Some(v) = v {
@@ -166,6 +170,41 @@ impl Sim {
             self.apply(t, action, image);
         }
         self.write_inputs(image);
+    }
+
+    /// The PLC stopped on a fault: from now on every actuator the model
+    /// gets is 0/FALSE, as a real PLC's outputs in its safe state, whatever
+    /// the variables it was bound to by name last held. (A stuck actuator
+    /// keeps its stuck value: that fault is in the hardware.) Applied to the
+    /// model at once, so anything reading it after the run sees it.
+    pub fn safe_state(&mut self) {
+        self.halted = true;
+        for &bi in &self.actuators {
+            let Some(signal) = self.bindings.get(bi).map(|b| b.signal) else {
+                continue;
+            };
+            let v = match self.stuck.get(signal).copied().flatten() {
+                Some(v) => Some(v),
+                None => self.safe_value(signal),
+            };
+            if let Some(v) = v {
+                self.plant.set(signal, v);
+            }
+        }
+    }
+
+    /// Whether [`Sim::safe_state`] was applied.
+    pub fn halted(&self) -> bool {
+        self.halted
+    }
+
+    /// 0/FALSE of a signal's kind.
+    fn safe_value(&self, signal: usize) -> Option<Value> {
+        Some(match self.plant.signals().get(signal)?.kind {
+            Kind::Bool => Value::Bool(false),
+            Kind::Int => Value::Int(0),
+            Kind::Real => Value::Real(0.0),
+        })
     }
 
     /// The value the PLC sees for a sensor/operator signal now.

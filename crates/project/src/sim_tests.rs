@@ -102,3 +102,22 @@ fn actions_in_time_order_and_overrides() {
     assert_eq!(sim.errors.len(), 1);
     assert_eq!(sim.errors[0].0, 1_200_000_000);
 }
+
+#[test]
+fn after_a_fault_the_model_sees_every_actuator_off() {
+    let mut sim = crane_sim();
+    let mut img = [0u8; 2];
+    img[0] |= 1 << 7; // M2S: up, in the variable bound by name
+    sim.sync(0, &mut img);
+    sim.sync(100_000_000, &mut img);
+    assert_eq!(sim.plant().quantity(1), 0.1);
+    assert!(!sim.halted());
+    sim.safe_state();
+    assert!(sim.halted());
+    assert_eq!(sim.plant().get(7), Value::Bool(false));
+    // The variable still says up; the model stays where it stopped.
+    sim.sync(200_000_000, &mut img);
+    assert!(bit(&img, 7));
+    assert_eq!(sim.plant().quantity(1), 0.1);
+    assert_eq!(sim.plant().get(7), Value::Bool(false));
+}

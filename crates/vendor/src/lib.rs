@@ -12,10 +12,21 @@
 //!   checker, lowering and every backend see nothing vendor-specific (the
 //!   same rule the SFC desugaring follows).
 //!
-//! ISaGRAF (`timer`, `sections`, `children`): TIMER variables with
-//! TSTART/TSTOP, the program sections Begin / Sequential / End, and child
-//! SFC programs (GSTART, GKILL, GFREEZE, GRST, GSTATUS, `child(N|S|R)`). The exact semantics are in
-//! `docs/vendor-dialects.md`.
+//! ISaGRAF (`timer`, `sections`, `children`, `empty`): TIMER variables with
+//! TSTART/TSTOP, the program sections Begin / Sequential / End, child SFC
+//! programs (GSTART, GKILL, GFREEZE, GRST, GSTATUS, `child(N|S|R)`), and
+//! transitions without a condition (TRUE). PL7 (`pl7`): `%Xi` steps,
+//! `%S`/`%SW` system objects, P1/N1/P0 sections in PL7 order, PRL/CHART/POST
+//! sections, transitions without a condition (FALSE). The exact semantics
+//! are in `docs/vendor-dialects.md`.
+//!
+//! Coupling to the SFC desugaring (`automat_syntax::desugar::sfc`), which
+//! the children, PL7 and empty-transition rewrites build on: step instances
+//! named as their steps with inputs `__TICK`/`__E`/`__L` and outputs
+//! `X`/`T`; one fire flag `__sfc_t<i>` per transition, cleared then set in
+//! precedence order; action bodies as consecutive `IF a.A THEN ...`. The
+//! conformance cases `isagraf_*`/`pl7_*` fail if that representation
+//! changes.
 //!
 //! Invariants: never panics on any tree; every rewrite keeps the spans of
 //! the text it came from, so diagnostics point at what the user wrote;

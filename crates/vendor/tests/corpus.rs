@@ -52,8 +52,9 @@ fn projects(dir: &str) -> Vec<(String, Dialect, Vec<PathBuf>)> {
     out
 }
 
-/// Checks a project; (file index, line, code) of every error, and the
-/// rendered report.
+/// Checks a project; (file index, line, code) of every error, the rendered
+/// report, the texts; a project without errors is also lowered (the only
+/// lowering error allowed: E090, several programs) and its code verified.
 fn check(dialect: Dialect, files: &[PathBuf]) -> (Vec<(usize, u32, Code)>, String, Vec<String>) {
     let mut map = SourceMap::new();
     let mut texts = Vec::new();
@@ -64,7 +65,7 @@ fn check(dialect: Dialect, files: &[PathBuf]) -> (Vec<(usize, u32, Code)>, Strin
     }
     automat_vendor::add_libraries(&mut map, &[dialect]);
     let mut interner = Interner::new();
-    let (_, analysis) = automat_vendor::check_sources(&map, &mut interner, &[dialect]);
+    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &[dialect]);
     let errors: Vec<_> = analysis
         .diagnostics
         .iter()
@@ -79,11 +80,17 @@ fn check(dialect: Dialect, files: &[PathBuf]) -> (Vec<(usize, u32, Code)>, Strin
             (file, line, d.code)
         })
         .collect();
-    (
-        errors,
-        render::render_report(&map, &analysis.diagnostics),
-        texts,
-    )
+    let mut report = render::render_report(&map, &analysis.diagnostics);
+    if errors.is_empty() {
+        let opts = automat_lower::LowerOptions { program: None };
+        if let Err(d) = automat_lower::lower(&units, &analysis, &interner, &map, &opts) {
+            if d.iter().any(|d| d.code != Code::E090) {
+                report.push_str(&render::render_report(&map, &d));
+                return (vec![(0, 0, Code::E091)], report, texts);
+            }
+        }
+    }
+    (errors, report, texts)
 }
 
 /// The `//~ CODE ...` announcements of a file: (line, code).

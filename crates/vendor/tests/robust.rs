@@ -36,7 +36,7 @@ fn rewrites_survive_every_corpus_file_and_its_prefixes() {
     let dialects = [Dialect::Isagraf, Dialect::Pl7];
     for f in &files {
         let text = std::fs::read_to_string(f).unwrap_or_default();
-        let mut cuts: Vec<usize> = (1..8).map(|k| text.len() * k / 8).collect();
+        let mut cuts: Vec<usize> = (1..5).map(|k| text.len() * k / 5).collect();
         cuts.push(text.len());
         for cut in cuts {
             let mut cut = cut;

@@ -1,6 +1,9 @@
 //! `automat plot`: a trace CSV to a timing diagram.
 
 pub mod csv;
+mod font;
+pub mod layout;
+pub mod png;
 pub mod svg;
 
 use crate::Outcome;
@@ -10,6 +13,8 @@ use std::path::PathBuf;
 /// Draw a timing diagram of a trace CSV (from `automat run --trace` or a
 /// failed scenario): booleans as steps, numbers as lines with their range,
 /// other values (active steps, states) as bands, a time axis with ticks.
+/// Written as SVG, or as PNG when the output is `*.png` (the same drawing,
+/// text in a built-in bitmap font).
 ///
 /// Exit codes: 0 ok, 2 unreadable trace, unknown signal or bad output.
 #[derive(Args)]
@@ -17,7 +22,7 @@ pub struct PlotArgs {
     /// The trace CSV.
     #[arg(value_name = "TRACE.csv")]
     trace: PathBuf,
-    /// The diagram to write (`.svg`).
+    /// The diagram to write: `.svg`, or `.png` (the same drawing as pixels).
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     output: PathBuf,
     /// Only these columns, in this order (comma-separated, case-insensitive).
@@ -54,7 +59,8 @@ pub fn select(trace: &mut csv::Trace, names: &[String]) -> Result<(), String> {
     Ok(())
 }
 
-/// Writes the diagram of the CSV text `text` to `output` (SVG).
+/// Writes the diagram of the CSV text `text` to `output` (SVG or PNG, by
+/// its extension).
 pub fn write_diagram(text: &str, names: &[String], output: &std::path::Path) -> Result<(), String> {
     let mut trace = csv::parse(text)?;
     select(&mut trace, names)?;
@@ -65,8 +71,10 @@ pub fn write_diagram(text: &str, names: &[String], output: &std::path::Path) -> 
     match ext.as_deref() {
         Some("svg") => std::fs::write(output, svg::render(&trace))
             .map_err(|e| format!("{}: {e}", output.display())),
+        Some("png") => std::fs::write(output, png::render(&trace)?)
+            .map_err(|e| format!("{}: {e}", output.display())),
         _ => Err(format!(
-            "{}: the diagram is written as SVG; name the output `*.svg`",
+            "{}: the diagram is written as SVG or PNG; name the output `*.svg` or `*.png`",
             output.display()
         )),
     }

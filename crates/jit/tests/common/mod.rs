@@ -11,8 +11,8 @@ use automat_jit::Jit;
 use automat_lower::{lower, LowerOptions};
 use automat_runtime::io::NoIo;
 use automat_runtime::scan::Env;
-use automat_runtime::{run, ClockMode, Executor, Limit, RunConfig, RunEnd, ScanObserver};
 use automat_runtime::SystemClock;
+use automat_runtime::{run, ClockMode, Executor, Limit, RunConfig, RunEnd, ScanObserver};
 use std::sync::atomic::AtomicBool;
 
 /// Parses, checks and lowers `files` (name, text); the error is the
@@ -106,7 +106,13 @@ pub fn differential(
             b.images.len()
         ));
     }
-    for (k, (x, y)) in a.images.iter().zip(&b.images).chain([(&a.last, &b.last)]).enumerate() {
+    for (k, (x, y)) in a
+        .images
+        .iter()
+        .zip(&b.images)
+        .chain([(&a.last, &b.last)])
+        .enumerate()
+    {
         if let Some(at) = x.iter().zip(y).position(|(p, q)| p != q) {
             return Err(format!(
                 "image differs after scan {} at byte {at}: interpreter {}, JIT {}",

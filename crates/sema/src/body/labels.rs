@@ -68,6 +68,17 @@ impl Found {
     }
 }
 
+/// How a label is shown: the SFC desugaring scopes the labels of each IL
+/// action/transition as `<scope>.<label>` (a `.` cannot occur in a user's
+/// identifier); a hidden scope (`__t12.L1`) is not shown, a named one
+/// (`Fill.L1`) is, as it tells which text the label is in.
+fn shown(text: &str) -> &str {
+    match text.split_once('.') {
+        Some((scope, rest)) if scope.starts_with("__") => rest,
+        _ => text,
+    }
+}
+
 /// Whether a body contains a label or a jump anywhere (cheap pre-check:
 /// ST bodies have none, and most checks can then be skipped).
 fn has_jumps(stmts: &[Stmt], depth: u32) -> bool {
@@ -115,7 +126,7 @@ impl Checker<'_> {
                 let mut diag = automat_base::Diagnostic::error(
                     Code::E105,
                     d.span,
-                    format!("the label `{}` is declared twice", c.name(sym)),
+                    format!("the label `{}` is declared twice", shown(c.name(sym))),
                 );
                 if let Some(sp) = first {
                     diag = diag.with_label(sp, "first declared here");
@@ -128,7 +139,7 @@ impl Checker<'_> {
                 None => {
                     let sym = g.sym;
                     self.err(Code::E106, g.span, |c| {
-                        format!("unknown label `{}` {}", c.name(sym), c.where_())
+                        format!("unknown label `{}` {}", shown(c.name(sym)), c.where_())
                     });
                 }
                 Some(&(list, _)) if !chain.contains(&list) => {
@@ -136,7 +147,7 @@ impl Checker<'_> {
                     self.err(Code::E107, g.span, |c| {
                         format!(
                             "the jump to `{}` would enter nested statements: a jump may only go to a label in its own statement list or an enclosing one",
-                            c.name(sym)
+                            shown(c.name(sym))
                         )
                     });
                 }

@@ -283,7 +283,12 @@ impl Parser<'_> {
                 Condition::St(e)
             }
         } else if self.eat(Tok::Colon) {
-            let (il, out) = self.il_desugared(&[Kw::EndTransition], true, hidden);
+            let (il, mut out) = self.il_desugared(&[Kw::EndTransition], true, hidden);
+            let scope = match name {
+                Some(n) => self.interner.name(n.sym).to_string(),
+                None => format!("__t{}", opener.start),
+            };
+            crate::desugar::sfc::scope::scope_labels(&mut out.stmts, &scope, self.interner);
             match out.result {
                 Some(result) => Condition::Il {
                     il: Box::new(il),
@@ -353,7 +358,13 @@ impl Parser<'_> {
         let name = self.expect_ident("the name of the action");
         self.expect(Tok::Colon, "after the action name");
         let body = if self.at_il_start() {
-            let (il, out) = self.il_desugared(END_ACTION, false, hidden);
+            let (il, mut out) = self.il_desugared(END_ACTION, false, hidden);
+            // Each IL action has its own labels (see `desugar::sfc::scope`).
+            let scope = match name {
+                Some(n) => self.interner.name(n.sym).to_string(),
+                None => format!("__a{}", opener.start),
+            };
+            crate::desugar::sfc::scope::scope_labels(&mut out.stmts, &scope, self.interner);
             ActionBody::Il {
                 il: Box::new(il),
                 stmts: out.stmts,

@@ -30,6 +30,7 @@
 //! fire flags `__sfc_t<n>` (the representation `desugar::sfc` documents);
 //! the PL7 conformance cases fail loudly if that representation changes.
 
+mod order;
 mod steps;
 pub mod text;
 
@@ -102,6 +103,8 @@ pub fn rewrite(
             externals(p, interner);
             if let Some(c) = &chart {
                 chart_code(p, c, interner);
+                let Body::St(stmts) = &mut p.body;
+                order::sections_in_pl7_order(stmts, c, interner);
             }
             system_prologue(p, interner);
         }

@@ -41,6 +41,7 @@
 mod build;
 mod check;
 mod gen;
+pub(crate) mod scope;
 
 use crate::ast::sfc::Chart;
 use crate::ast::{PouKind, Stmt, VarBlock};

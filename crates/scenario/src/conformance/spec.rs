@@ -1,5 +1,5 @@
 //! The expectation header of a conformance case: its syntax (documented in
-//! `conformance.rs`) and its parser.
+//! `mod.rs`) and its parser.
 
 use automat_ir::FaultKind;
 
@@ -87,7 +87,7 @@ fn parse_expect(text: &str, at: Option<u64>, line: usize) -> Result<Expect, Stri
 }
 
 /// The text of the header: the first comment, which must open the file.
-fn header(source: &str) -> Result<(&str, usize), String> {
+pub(crate) fn header(source: &str) -> Result<(&str, usize), String> {
     let start = source.trim_start();
     let skipped = source.len() - start.len();
     let body = start
@@ -96,8 +96,8 @@ fn header(source: &str) -> Result<(&str, usize), String> {
     let end = body
         .find("*)")
         .ok_or("the expectation header is not closed")?;
-    let first_line = source[..skipped].matches('\n').count() + 1;
-    Ok((&body[..end], first_line))
+    let first_line = source.get(..skipped).unwrap_or("").matches('\n').count() + 1;
+    Ok((body.get(..end).unwrap_or(""), first_line))
 }
 
 /// Parses the header of a conformance case.
@@ -154,7 +154,7 @@ pub fn parse(source: &str) -> Result<Spec, String> {
                 .libraries
                 .extend(rest.split(',').map(|l| l.trim().to_string())),
             k if k.starts_with("expect-at ") => {
-                let n = k["expect-at ".len()..].trim();
+                let n = k.get("expect-at ".len()..).unwrap_or("").trim();
                 let at = n
                     .parse()
                     .map_err(|_| format!("line {line}: expect-at: `{n}` is not a scan number"))?;
@@ -166,6 +166,7 @@ pub fn parse(source: &str) -> Result<Spec, String> {
     Ok(spec)
 }
 
+#[cfg(test)]
 #[test]
 fn header_syntax() {
     let src = "\n(* title: whatever\n   cycles: 3\n   cycle-time: T#20ms\n   expect: Main.q = TRUE\n   expect-at 2: a[1].x = 'a = b'  -- note\n   expect-fault: division-by-zero at 12 in cycle 3\n   known-bug: E1\n*)\nPROGRAM Main END_PROGRAM";

@@ -8,10 +8,10 @@ use automat_ir::Program;
 use automat_lower::{lower, LowerOptions};
 use automat_runtime::io::NoIo;
 use automat_runtime::scan::Env;
+use automat_runtime::Executor;
 use automat_runtime::{
     resolve, run, value, ClockMode, Limit, Place, RunConfig, RunEnd, ScanObserver, SystemClock,
 };
-use automat_runtime::Executor;
 use std::sync::atomic::AtomicBool;
 
 /// Parses, checks and lowers one file; the error is the rendered diagnostics.
@@ -92,10 +92,7 @@ pub fn check_on(
     }
 }
 
-fn observe<E: Executor>(
-    engine: &mut E,
-    spec: &Spec,
-) -> Result<Vec<String>, String> {
+fn observe<E: Executor>(engine: &mut E, spec: &Spec) -> Result<Vec<String>, String> {
     let program = engine.program().clone();
     let mut places = Vec::new();
     for e in &spec.expects {
