@@ -2,6 +2,7 @@
 //! the host ISA, one declaration per POU (direct calls between them), the
 //! Rust helpers imported by name, then [`crate::translate`] per function.
 
+use crate::instances;
 use crate::rt::{self, BuiltinCall};
 use crate::translate::{self, Helpers};
 use crate::JitError;
@@ -22,6 +23,10 @@ pub struct Compiled {
     /// `None`: not reachable from any task, not compiled.
     pub entries: Vec<Option<EntryFn>>,
     pub builtins: Vec<BuiltinCall>,
+    /// `Some(bound)`: the function was compiled without an entry check,
+    /// for instances `this` with `this + bound <= image size` only
+    /// (`instances.rs`).
+    pub bounds: Vec<Option<u64>>,
 }
 
 fn err(what: impl std::fmt::Display) -> JitError {
@@ -75,13 +80,15 @@ pub fn compile(program: &Program) -> Result<Compiled, JitError> {
     // The variant with every `This` access checked, for functions that have
     // such accesses (see `Helpers::checked`).
     let mut checked_ids: Vec<Option<(FuncId, u64)>> = Vec::with_capacity(program.funcs.len());
+    let bounds = instances::static_bounds(program);
     for (i, f) in program.funcs.iter().enumerate() {
         ids.push(
             m.declare_function(&format!("pou{i}"), Linkage::Local, &pou_sig)
                 .map_err(err)?,
         );
         let extent = translate::this_extent(f);
-        checked_ids.push(if extent > 0 {
+        let is_static = bounds.get(i).copied().flatten().is_some();
+        checked_ids.push(if extent > 0 && !is_static {
             let id = m
                 .declare_function(&format!("pou{i}_checked"), Linkage::Local, &pou_sig)
                 .map_err(err)?;
@@ -150,6 +157,7 @@ pub fn compile(program: &Program) -> Result<Compiled, JitError> {
                 copy: m.declare_func_in_func(copy, &mut ctx.func),
                 callees: refs,
                 checked,
+                static_this: bounds.get(i).copied().flatten().is_some(),
                 ptr,
                 target: m.target_config(),
             };
@@ -188,6 +196,7 @@ pub fn compile(program: &Program) -> Result<Compiled, JitError> {
         module: m,
         entries,
         builtins,
+        bounds,
     })
 }
 

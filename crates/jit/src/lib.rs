@@ -22,6 +22,7 @@
 
 mod compile;
 mod emit;
+mod instances;
 mod rt;
 mod translate;
 
@@ -59,6 +60,9 @@ pub struct Jit {
     budget: u64,
     /// Native entry of every function the tasks can reach.
     entries: Vec<Option<compile::EntryFn>>,
+    /// Per function: `Some(bound)` when compiled without its entry check
+    /// (see `instances.rs`), valid only for `this + bound <= image size`.
+    bounds: Vec<Option<u64>>,
     shared: Box<rt::Shared>,
     /// Owns the executable memory `entries` point into.
     module: Option<JITModule>,
@@ -85,6 +89,7 @@ impl Jit {
             image,
             budget: automat_engine::DEFAULT_BUDGET,
             entries: compiled.entries,
+            bounds: compiled.bounds,
             shared,
             module: Some(compiled.module),
         })
@@ -92,6 +97,14 @@ impl Jit {
 
     pub fn program(&self) -> &Program {
         &self.program
+    }
+
+    /// Whether function `func` was compiled once, without the entry check
+    /// of its instance, because every instance it runs on is proved inside
+    /// the image (`instances.rs`); `false` for functions reached through
+    /// an instance address in a register, which keep the checked twin.
+    pub fn is_static(&self, func: u32) -> bool {
+        self.bounds.get(func as usize).is_some_and(|b| b.is_some())
     }
 
     pub fn image(&self) -> &[u8] {
@@ -133,6 +146,28 @@ impl Jit {
                 },
             });
         };
+        if let Some(&Some(bound)) = self.bounds.get(func as usize) {
+            // Compiled for the instances the tasks run it on: any other
+            // must lie inside the image too (its accesses are unchecked).
+            if (this as u64).saturating_add(bound) > self.image.len() as u64 {
+                return Err(Fault {
+                    kind: FaultKind::Function,
+                    message: format!(
+                        "instance at {this} (+{bound} bytes) lies outside the image of {} bytes",
+                        self.image.len()
+                    ),
+                    site: Site {
+                        pou: self
+                            .program
+                            .funcs
+                            .get(func as usize)
+                            .map(|f| f.name.clone())
+                            .unwrap_or_default(),
+                        location: String::new(),
+                    },
+                });
+            }
+        }
         let mut ctx = rt::RunCtx {
             image: self.image.as_mut_ptr(),
             image_len: self.image.len() as u64,

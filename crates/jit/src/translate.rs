@@ -32,6 +32,9 @@ pub struct Helpers {
     /// For the fast variant of a function with `This` accesses: the
     /// checked variant, run when the entry check fails, and the extent.
     pub checked: Option<(FuncRef, u64)>,
+    /// The function only ever runs on instances proved inside the image
+    /// (`instances.rs`): its `This` accesses need no check at all.
+    pub static_this: bool,
     pub ptr: Type,
     pub target: cranelift_codegen::isa::TargetFrontendConfig,
 }
@@ -217,7 +220,7 @@ pub fn function(
         len,
         slots,
         builtins,
-        this_safe: h.checked.is_some(),
+        this_safe: h.checked.is_some() || h.static_this,
         funcs,
         ret_to: None,
         inlined: 0,
