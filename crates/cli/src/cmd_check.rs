@@ -1,7 +1,7 @@
 //! `automat check`: parse and check a project, print diagnostics.
 
 use crate::{files, Outcome};
-use automat_base::{render, Interner, Severity};
+use automat_base::{render, Interner, Severity, SourceMap};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 
@@ -9,6 +9,8 @@ use std::path::PathBuf;
 ///
 /// All files given (and all *.st files under the directories given) form one
 /// project: POUs, types and globals of one file are visible in the others.
+/// A directory holding `automat.toml` is checked as that project: its
+/// sources with its `libraries` (as `automat run` and `automat test` do).
 /// Exits with 0 when there are no errors, 1 when there are, 2 when a path
 /// cannot be read.
 #[derive(Args)]
@@ -40,15 +42,58 @@ enum Format {
     Json,
 }
 
+/// What the PATH arguments stand for: a folder (or file) holding
+/// `automat.toml` is the project it describes, checked as `automat run`
+/// compiles it (its `sources` and `libraries`); anything else is sources.
+struct Inputs {
+    files: Vec<PathBuf>,
+    libraries: Vec<String>,
+}
+
+fn inputs(args: &CheckArgs) -> Result<Inputs, Outcome> {
+    let mut plain = Vec::new();
+    let mut files = Vec::new();
+    let mut libraries = Vec::new();
+    for p in &args.paths {
+        let Some(toml) = automat_project::project_file(p) else {
+            plain.push(p.clone());
+            continue;
+        };
+        let mut map = SourceMap::new();
+        match automat_project::load(&toml, &mut map) {
+            Ok(project) => {
+                files.extend(project.sources);
+                libraries.extend(project.libraries);
+            }
+            Err(d) => {
+                eprint!("{}", render::render_report(&map, &d));
+                return Err(Outcome::ProgramErrors);
+            }
+        }
+    }
+    if !plain.is_empty() {
+        files.extend(files::collect(&plain).map_err(|e| {
+            eprintln!("error: {e}");
+            Outcome::BadInput
+        })?);
+    }
+    libraries.extend(args.libs.iter().cloned());
+    Ok(Inputs { files, libraries })
+}
+
 pub fn run(args: &CheckArgs) -> Outcome {
-    let dialects = match automat_vendor::parse_names(&args.libs) {
+    let inputs = match inputs(args) {
+        Ok(i) => i,
+        Err(o) => return o,
+    };
+    let dialects = match automat_vendor::parse_names(&inputs.libraries) {
         Ok(d) => d,
         Err(e) => {
             eprintln!("error: --lib: {e}");
             return Outcome::BadInput;
         }
     };
-    let mut map = match files::collect(&args.paths).and_then(|f| files::load(&f)) {
+    let mut map = match files::load(&inputs.files) {
         Ok(m) => m,
         Err(e) => {
             eprintln!("error: {e}");

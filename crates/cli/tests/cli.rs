@@ -34,6 +34,38 @@ fn clean_project_exits_0_and_prints_nothing() {
 }
 
 #[test]
+fn a_project_folder_is_checked_with_its_libraries() {
+    // `libraries = ["isagraf"]` in automat.toml: TIMER, TSTART and the
+    // section pragmas are known without `--lib`, as for `run` and `test`.
+    let dir = std::env::temp_dir().join(format!("automat-cli-lib-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    std::fs::write(
+        dir.join("automat.toml"),
+        "[project]\nname = \"lib\"\nlibraries = [\"isagraf\"]\n",
+    )
+    .expect("write project");
+    std::fs::write(
+        dir.join("main.st"),
+        "PROGRAM Main\nVAR t : TIMER; END_VAR\nTSTART(t);\nEND_PROGRAM\n",
+    )
+    .expect("write source");
+    let d = dir.to_str().unwrap();
+    let out = automat(&["check", d]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    // A broken project file is reported with its location, exit 1.
+    std::fs::write(dir.join("automat.toml"), "[project]\nname = 3\n").expect("write");
+    let out = automat(&["check", d]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("automat.toml:2:"), "{err}");
+}
+
+#[test]
 fn errors_exit_1_with_location_code_and_caret() {
     let path = temp_file("bad.st", BAD);
     let out = automat(&["check", path.to_str().unwrap()]);
