@@ -239,7 +239,23 @@ fn instance_symbols(
                 o,
                 b.filter(|_| cx.model.types.elem(v.ty) == Some(automat_sema::types::Elem::Bool)),
             ),
-            Slot::External => continue,
+            Slot::External => {
+                // `Inst.g` of a VAR_EXTERNAL is the global `g` (as the
+                // program's code sees it): the same place, for --print,
+                // scenarios and monitoring.
+                if let Some(&(offset, bit, ty)) = cx.globals.get(&v.name) {
+                    let ty = symbols::symbol_type(&mut cx.layout, cx.interner, ty, 0);
+                    entries.push(SymbolEntry {
+                        path: format!("{inst}.{}", cx.interner.name(v.name)),
+                        offset,
+                        bit,
+                        ty,
+                        retain: false,
+                        constant: v.constant,
+                    });
+                }
+                continue;
+            }
         };
         let mut ty = symbols::symbol_type(&mut cx.layout, cx.interner, v.ty, 0);
         if v.section == Section::InOut {
