@@ -195,7 +195,7 @@ codes! {
     E123 => "chart without an initial step",
         "Every chart needs exactly one INITIAL_STEP: the step active when the POU starts.";
     E124 => "several initial steps",
-        "A chart has more than one INITIAL_STEP. Start parallel sequences with a simultaneous divergence from a single initial step instead.";
+        "A chart has more than one INITIAL_STEP. Start parallel sequences with a simultaneous divergence from a single initial step instead. (The ISaGRAF and PL7 dialects allow several initial steps, as those tools do.)";
     E125 => "unknown action",
         "A step's action association names neither an ACTION of the chart nor a variable of the POU.";
     E126 => "invalid action qualifier",

@@ -165,6 +165,9 @@ pub fn check_sources(
             pragma::sections(unit.file, &sources.get(unit.file).text),
         ));
     }
+    // ISaGRAF and PL7 charts may have several initial steps (IEC allows
+    // one, E124): each is active at the start and after a reset.
+    diags.retain(|d| d.code != Code::E124);
     let mut has_children = false;
     if dialects.contains(&Dialect::Isagraf) {
         for unit in units.iter_mut().filter(|u| is_user(u)) {
