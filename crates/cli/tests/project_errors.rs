@@ -30,7 +30,7 @@ fn project_file_errors_point_into_automat_toml() {
         ("e301_unknown_model", "e301_unknown_model/automat.toml:6:9: error[E301]: unknown plant model `kran`"),
         ("e302_unknown_signal", "e302_unknown_signal/automat.toml:9:1: error[E302]: the crane model has no signal `Start`"),
         ("e303_unknown_variable", "e303_unknown_variable/automat.toml:9:7: error[E303]: signal `M1S` is bound to `Ctrl.nothing`: "),
-        ("e304_type_mismatch", "e304_type_mismatch/automat.toml:9:7: error[E304]: signal `M1S` is BOOL but `Ctrl.step` is CraneStep"),
+        ("e304_type_mismatch", "e304_type_mismatch/automat.toml:9:7: error[E304]: signal `M1S` is BOOL but `Ctrl.GS5.t` is TIME"),
         ("e305_e306_unbound", "e305_e306_unbound/automat.toml:5:9: error[E305]: actuator `M2J` of the crane model is bound to nothing"),
         ("e305_e306_unbound", "e305_e306_unbound/automat.toml:5:9: warning[E306]: sensor `l4` of the crane model is bound to nothing"),
         ("e307_bad_param", "e307_bad_param/automat.toml:9:1: error[E307]: plant parameter `depth` refused: crane: unknown parameter `depth`"),
