@@ -10,6 +10,7 @@ use automat_plant::{Dir, Value};
 use automat_project::steps::{charts, Chart};
 use automat_project::Sim;
 use automat_runtime::clock::{Monotonic, SystemClock};
+use automat_runtime::stats::Stats;
 use automat_scenario::ast::{self, ActionKind};
 use automat_scenario::check::{show_f64, show_value, Scope};
 use std::cell::RefCell;
@@ -57,6 +58,9 @@ pub struct Live {
     scans: u64,
     speed: f64,
     message: String,
+    /// Scan time min/avg/max (ns, on the run's clock) and overruns, as
+    /// the runtime last reported them.
+    cycle: Option<(i64, i64, i64, u64)>,
 }
 
 const HELP: &str = "commands: press NAME [for TIME] | release NAME | set NAME VALUE | stuck NAME VALUE | unstick NAME | plant CMD key=value | quit";
@@ -89,6 +93,7 @@ impl Live {
             scans: 0,
             speed,
             message: String::new(),
+            cycle: None,
         }
     }
 
@@ -174,10 +179,11 @@ impl Live {
             .join(" ");
         vec![
             format!(
-                "{} {} | scans {} | speed {}x",
+                "{} {} | scans {}{} | speed {}x",
                 plant.name(),
                 automat_iec::format::format_duration(now, false),
                 self.scans,
+                cycle_text(self.cycle),
                 self.speed
             ),
             format!("  in:    {}", sig(&[Dir::Sensor, Dir::Operator])),
@@ -187,6 +193,13 @@ impl Live {
         .into_iter()
         .chain(steps_line(&self.charts, image))
         .collect()
+    }
+
+    /// Keeps the figures of the cycle statistics (no allocation per scan).
+    pub fn stats(&mut self, st: &Stats) {
+        if let (Some(min), Some(avg), Some(max)) = (st.min_ns, st.avg_ns(), st.max_ns) {
+            self.cycle = Some((min, avg, max, st.overruns));
+        }
     }
 
     pub fn after_scan(&mut self, now: i64, image: &[u8], sim: &Rc<RefCell<Sim>>) {
@@ -221,6 +234,28 @@ impl Live {
         }
         let _ = out.flush();
     }
+}
+
+/// ` | scan 12us avg (8us..40us) | overruns 0`, empty before any scan.
+fn cycle_text(cycle: Option<(i64, i64, i64, u64)>) -> String {
+    let Some((min, avg, max, overruns)) = cycle else {
+        return String::new();
+    };
+    let t = |ns: i64| {
+        if ns >= 1_000_000 {
+            format!("{:.1}ms", ns as f64 / 1e6)
+        } else if ns >= 1_000 {
+            format!("{}us", ns / 1_000)
+        } else {
+            format!("{ns}ns")
+        }
+    };
+    format!(
+        " | scan {} avg ({}..{}) | overruns {overruns}",
+        t(avg),
+        t(min),
+        t(max)
+    )
 }
 
 /// `  steps: MAIN: FILL | MAIN.DOSE: IDLE`: the active steps of every chart
@@ -279,5 +314,14 @@ mod tests {
             Some("  steps: MAIN: A1 B1 | MAIN.FILL: -")
         );
         assert_eq!(steps_line(&[], &[]), None);
+    }
+
+    #[test]
+    fn the_status_line_shows_the_cycle_statistics() {
+        assert_eq!(cycle_text(None), "");
+        assert_eq!(
+            cycle_text(Some((800, 12_345, 2_500_000, 3))),
+            " | scan 12us avg (800ns..2.5ms) | overruns 3"
+        );
     }
 }

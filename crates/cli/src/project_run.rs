@@ -75,6 +75,12 @@ impl ScanObserver for Observer {
         }
         Ok(())
     }
+
+    fn stats(&mut self, stats: &automat_runtime::stats::Stats) {
+        if let Some(live) = &mut self.live {
+            live.stats(stats);
+        }
+    }
 }
 
 struct Loaded {

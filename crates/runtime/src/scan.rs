@@ -42,6 +42,9 @@ pub struct RunConfig {
 /// monitoring). An error ends the run with [`RunEnd::Observer`].
 pub trait ScanObserver {
     fn after_scan(&mut self, plc_time_ns: i64, image: &[u8]) -> Result<(), String>;
+    /// The cycle statistics after each scan that ran a task (scan time
+    /// measured on the run's clock, overruns counted): for live views.
+    fn stats(&mut self, _stats: &Stats) {}
 }
 
 impl ScanObserver for () {
@@ -197,6 +200,9 @@ impl<E: Executor> Loop<'_, '_, E> {
                     self.stats.overruns += 1;
                     self.sched.skip_to(late);
                 }
+            }
+            if !self.due.is_empty() {
+                self.env.observer.stats(&self.stats);
             }
         }
     }
