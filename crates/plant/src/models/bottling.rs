@@ -29,7 +29,8 @@
 //! belt are `good` (one dose, capped) or `bad`.
 
 use super::pneumatic::{positive, Drive};
-use crate::{Dir, Kind, Plant, Quantity, Rng, Signal, Value};
+use super::{q, sig};
+use crate::{Dir, Plant, Quantity, Rng, Signal, Value};
 
 const SIGNALS: &[Signal] = &[
     sig("F1", Dir::Sensor, "cylinder A (doser) up"),
@@ -68,15 +69,6 @@ const SIGNALS: &[Signal] = &[
     sig("Insurubare", Dir::Actuator, "screw the cap on"),
 ];
 
-const fn sig(name: &'static str, dir: Dir, doc: &'static str) -> Signal {
-    Signal {
-        name,
-        dir,
-        kind: Kind::Bool,
-        doc,
-    }
-}
-
 const QUANTITIES: &[Quantity] = &[
     q("good", "", "bottles that left filled once and capped"),
     q(
@@ -104,10 +96,6 @@ const QUANTITIES: &[Quantity] = &[
         "1 when the bottle at the capping station is capped (-1: none)",
     ),
 ];
-
-const fn q(name: &'static str, unit: &'static str, doc: &'static str) -> Quantity {
-    Quantity { name, unit, doc }
-}
 
 const BANDA: usize = 10;
 const INSURUBARE: usize = 17;

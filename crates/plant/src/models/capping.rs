@@ -26,7 +26,8 @@
 //! parameter draws capless bottles from the [`Rng`].
 
 use super::pneumatic::{positive, Drive};
-use crate::{Dir, Kind, Plant, Quantity, Rng, Signal, Value};
+use super::{q, sig};
+use crate::{Dir, Plant, Quantity, Rng, Signal, Value};
 use std::collections::VecDeque;
 
 const SIGNALS: &[Signal] = &[
@@ -44,19 +45,6 @@ const SIGNALS: &[Signal] = &[
     sig("Alarma", Dir::Actuator, "alarm lamp (Alarmă)"),
     sig("Expulzare", Dir::Actuator, "ejector of capless bottles"),
 ];
-
-const fn sig(name: &'static str, dir: Dir, doc: &'static str) -> Signal {
-    Signal {
-        name,
-        dir,
-        kind: Kind::Bool,
-        doc,
-    }
-}
-
-const fn q(name: &'static str, unit: &'static str, doc: &'static str) -> Quantity {
-    Quantity { name, unit, doc }
-}
 
 const QUANTITIES: &[Quantity] = &[
     q("bottles", "", "bottles put on belt 1"),

@@ -30,7 +30,8 @@
 //! count `conflicts`.
 
 use super::pneumatic::{positive, Drive};
-use crate::{Dir, Kind, Plant, Quantity, Rng, Signal, Value};
+use super::{q, sig};
+use crate::{Dir, Plant, Quantity, Rng, Signal, Value};
 
 const SIGNALS: &[Signal] = &[
     sig("Start", Dir::Operator, "start contact"),
@@ -50,19 +51,6 @@ const SIGNALS: &[Signal] = &[
     sig("Clatire", Dir::Actuator, "rinsing post (Clătire)"),
     sig("Uscare", Dir::Actuator, "drying post"),
 ];
-
-const fn sig(name: &'static str, dir: Dir, doc: &'static str) -> Signal {
-    Signal {
-        name,
-        dir,
-        kind: Kind::Bool,
-        doc,
-    }
-}
-
-const fn q(name: &'static str, unit: &'static str, doc: &'static str) -> Quantity {
-    Quantity { name, unit, doc }
-}
 
 const QUANTITIES: &[Quantity] = &[
     q("queue", "", "vehicles waiting at the entrance"),

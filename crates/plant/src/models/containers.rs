@@ -27,7 +27,8 @@
 //! the filling table within 0.05 l of each liquid.
 
 use super::pneumatic::{positive, Drive};
-use crate::{Dir, Kind, Plant, Quantity, Rng, Signal, Value};
+use super::{q, sig};
+use crate::{Dir, Plant, Quantity, Rng, Signal, Value};
 
 const SIGNALS: &[Signal] = &[
     sig(
@@ -87,15 +88,6 @@ const SIGNALS: &[Signal] = &[
     ),
 ];
 
-const fn sig(name: &'static str, dir: Dir, doc: &'static str) -> Signal {
-    Signal {
-        name,
-        dir,
-        kind: Kind::Bool,
-        doc,
-    }
-}
-
 const QUANTITIES: &[Quantity] = &[
     q("A_a", "l", "liquid A in container A"),
     q("A_b", "l", "liquid B in container A"),
@@ -127,10 +119,6 @@ const QUANTITIES: &[Quantity] = &[
     q("B_pos", "m", "position of container B"),
     q("C_pos", "m", "position of container C"),
 ];
-
-const fn q(name: &'static str, unit: &'static str, doc: &'static str) -> Quantity {
-    Quantity { name, unit, doc }
-}
 
 const BANDA_1: usize = 6;
 const VALVA_A: usize = 12;

@@ -20,7 +20,8 @@
 //! scenarios assert never happens. `cycles` counts returns to rest
 //! position 1 (bottom-left) after having left it.
 
-use crate::{Dir, Kind, Plant, Quantity, Rng, Signal, Value};
+use super::sig;
+use crate::{Dir, Plant, Quantity, Rng, Signal, Value};
 
 const SIGNALS: &[Signal] = &[
     sig("Pornire", Dir::Operator, "start push-button"),
@@ -33,15 +34,6 @@ const SIGNALS: &[Signal] = &[
     sig("M2S", Dir::Actuator, "vertical motor, up"),
     sig("M2J", Dir::Actuator, "vertical motor, down"),
 ];
-
-const fn sig(name: &'static str, dir: Dir, doc: &'static str) -> Signal {
-    Signal {
-        name,
-        dir,
-        kind: Kind::Bool,
-        doc,
-    }
-}
 
 const QUANTITIES: &[Quantity] = &[
     Quantity {

@@ -29,7 +29,8 @@
 //! discharge that left it empty.
 
 use super::pneumatic::{positive, Drive};
-use crate::{Dir, Kind, Plant, Quantity, Rng, Signal, Value};
+use super::{q, sig};
+use crate::{Dir, Plant, Quantity, Rng, Signal, Value};
 
 const SIGNALS: &[Signal] = &[
     sig("Start", Dir::Operator, "feed push-button (I:1/1)"),
@@ -80,15 +81,6 @@ const SIGNALS: &[Signal] = &[
     ),
 ];
 
-const fn sig(name: &'static str, dir: Dir, doc: &'static str) -> Signal {
-    Signal {
-        name,
-        dir,
-        kind: Kind::Bool,
-        doc,
-    }
-}
-
 const QUANTITIES: &[Quantity] = &[
     q("scale", "kg", "weight on scale C"),
     q("mixer", "kg", "liquid in the mixer"),
@@ -117,10 +109,6 @@ const QUANTITIES: &[Quantity] = &[
         "time the pivot motor was driven both ways",
     ),
 ];
-
-const fn q(name: &'static str, unit: &'static str, doc: &'static str) -> Quantity {
-    Quantity { name, unit, doc }
-}
 
 const START: usize = 0;
 const VALVA_A: usize = 7;

@@ -25,7 +25,8 @@
 //! the model starts with it TRUE (not pressed).
 
 use super::pneumatic::{positive, Drive};
-use crate::{Dir, Kind, Plant, Quantity, Rng, Signal, Value};
+use super::{q, sig};
+use crate::{Dir, Plant, Quantity, Rng, Signal, Value};
 
 const SIGNALS: &[Signal] = &[
     sig("CylBack", Dir::Sensor, "ejecting cylinder retracted (I0.1)"),
@@ -72,15 +73,6 @@ const SIGNALS: &[Signal] = &[
     ),
 ];
 
-const fn sig(name: &'static str, dir: Dir, doc: &'static str) -> Signal {
-    Signal {
-        name,
-        dir,
-        kind: Kind::Bool,
-        doc,
-    }
-}
-
 const QUANTITIES: &[Quantity] = &[
     q("stack", "", "workpieces in the magazine above the slot"),
     q(
@@ -102,10 +94,6 @@ const QUANTITIES: &[Quantity] = &[
         "time both coils of the arm, or VacOn and VacOff, were on",
     ),
 ];
-
-const fn q(name: &'static str, unit: &'static str, doc: &'static str) -> Quantity {
-    Quantity { name, unit, doc }
-}
 
 const START: usize = 6;
 const EJECT_OUT: usize = 9;

@@ -1,7 +1,7 @@
 //! The model of every process of the sources, one file each, and the
 //! registry the project loader looks names up in.
 
-use crate::Plant;
+use crate::{Dir, Kind, Plant, Quantity, Signal};
 
 pub mod bottling;
 pub mod capping;
@@ -50,4 +50,19 @@ pub fn by_name(name: &str) -> Option<Box<dyn Plant>> {
         "sorter" => Box::new(sorter::Sorter::new()),
         _ => return None,
     })
+}
+
+/// A BOOL signal of a model's table (most of the sources' I/O).
+pub(crate) const fn sig(name: &'static str, dir: Dir, doc: &'static str) -> Signal {
+    Signal {
+        name,
+        dir,
+        kind: Kind::Bool,
+        doc,
+    }
+}
+
+/// A quantity of a model's table.
+pub(crate) const fn q(name: &'static str, unit: &'static str, doc: &'static str) -> Quantity {
+    Quantity { name, unit, doc }
 }

@@ -22,7 +22,8 @@
 //! scenario can assert how many strokes ran.
 
 use super::pneumatic::{positive, Drive};
-use crate::{Dir, Kind, Plant, Quantity, Rng, Signal, Value};
+use super::sig;
+use crate::{Dir, Plant, Quantity, Rng, Signal, Value};
 
 const SIGNALS: &[Signal] = &[
     sig("M", Dir::Operator, "start-oscillation push-button"),
@@ -46,15 +47,6 @@ const SIGNALS: &[Signal] = &[
     sig("MS", Dir::Actuator, "motor to the left (contactor Cs)"),
     sig("MD", Dir::Actuator, "motor to the right (contactor Cd)"),
 ];
-
-const fn sig(name: &'static str, dir: Dir, doc: &'static str) -> Signal {
-    Signal {
-        name,
-        dir,
-        kind: Kind::Bool,
-        doc,
-    }
-}
 
 const QUANTITIES: &[Quantity] = &[
     Quantity {

@@ -26,6 +26,7 @@
 //! (small: 5..40, large: over 40, as the digest's suggested constants).
 
 use super::pneumatic::{positive, Drive};
+use super::q;
 use super::tank_temperature::raw_4_20;
 use crate::{Dir, Kind, Plant, Quantity, Rng, Signal, Value};
 use std::collections::VecDeque;
@@ -99,10 +100,6 @@ const fn sig(name: &'static str, dir: Dir, kind: Kind, doc: &'static str) -> Sig
         kind,
         doc,
     }
-}
-
-const fn q(name: &'static str, unit: &'static str, doc: &'static str) -> Quantity {
-    Quantity { name, unit, doc }
 }
 
 const QUANTITIES: &[Quantity] = &[

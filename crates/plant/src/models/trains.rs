@@ -18,6 +18,7 @@
 //! `dir_faults` counts direction changes while the train was moving (the
 //! source: the direction bit only changes while the speed is 0).
 
+use super::q;
 use crate::{Dir, Kind, Plant, Quantity, Rng, Signal, Value};
 
 const SIGNALS: &[Signal] = &[
@@ -121,10 +122,6 @@ const QUANTITIES: &[Quantity] = &[
     q("crashes", "", "trains that ran into a buffer stop"),
     q("dir_faults", "", "direction changes while moving"),
 ];
-
-const fn q(name: &'static str, unit: &'static str, doc: &'static str) -> Quantity {
-    Quantity { name, unit, doc }
-}
 
 const DIR1: usize = 6;
 const SPEED1: usize = 9;
