@@ -9,4 +9,4 @@ pub mod parse;
 pub mod run;
 
 pub use parse::parse;
-pub use run::{run, Failure, Outcome};
+pub use run::{run, run_on, Failure, Outcome};

@@ -22,7 +22,8 @@ use automat_runtime::io::NoIo;
 use automat_runtime::scan::Env;
 use automat_runtime::trace::csv_cell;
 use automat_runtime::{
-    run as run_scan, value, ClockMode, Limit, RunConfig, RunEnd, ScanObserver, SystemClock,
+    run as run_scan, value, ClockMode, Executor, Limit, RunConfig, RunEnd, ScanObserver,
+    SystemClock,
 };
 use std::cell::RefCell;
 use std::io::Write;
@@ -280,6 +281,19 @@ pub fn run<W: Write>(
     scn: &Scenario,
     trace: Option<W>,
 ) -> Result<Outcome, Vec<Diagnostic>> {
+    run_on(program, Engine::new(program.clone()), project, scn, trace)
+}
+
+/// [`run`] on a given backend `exec` built from `program` (the
+/// interpreter, the JIT: both give the same trace; benchmarks compare
+/// them). `exec` starts cold.
+pub fn run_on<E: Executor, W: Write>(
+    program: &Program,
+    exec: E,
+    project: &Project,
+    scn: &Scenario,
+    trace: Option<W>,
+) -> Result<Outcome, Vec<Diagnostic>> {
     let plant = project.new_plant()?.ok_or_else(|| {
         vec![Diagnostic::error(
             Code::E301,
@@ -351,7 +365,7 @@ pub fn run<W: Write>(
         header_written: false,
         duration_ns: scn.duration_ns,
     };
-    let mut exec = PlantExec::new(Engine::new(program.clone()), Rc::clone(&sim));
+    let mut exec = PlantExec::new(exec, Rc::clone(&sim));
     let cfg = RunConfig {
         cycle_time_ns: project.cycle_time_ns,
         clock: ClockMode::Virtual,
