@@ -15,7 +15,8 @@ use automat_base::{Code, Diagnostic, Interner};
 use automat_syntax::ast::sfc::{Chart, Condition};
 use automat_syntax::ast::{ArgDir, Expr, ExprKind};
 
-/// E127 for every side effect in the transition conditions of `chart`.
+/// E127 for every side effect in the transition conditions of `chart`,
+/// its macro-step bodies included.
 pub(crate) fn check_chart(
     model: &Model,
     interner: &Interner,
@@ -23,7 +24,11 @@ pub(crate) fn check_chart(
     chart: &Chart,
     diags: &mut Vec<Diagnostic>,
 ) {
-    for t in &chart.transitions {
+    for t in chart
+        .charts()
+        .into_iter()
+        .flat_map(|c| c.transitions.iter())
+    {
         if let Condition::St(e) = &t.cond {
             walk(model, interner, pou, e, diags);
         }

@@ -33,6 +33,7 @@ mod parser;
 
 use automat_base::{Code, Diagnostic, FileId, Interner, Span};
 
+pub use desugar::sfc::desugar_chart;
 pub use parser::MAX_DEPTH;
 
 /// The result of parsing one file: always a tree, plus what went wrong.

@@ -24,6 +24,28 @@ pub struct Chart {
     pub actions: Vec<Action>,
 }
 
+impl Chart {
+    /// This chart and the chart of every macro-step body in it, nested ones
+    /// included, depth first in source order (a body right after the chart
+    /// that holds it, before the next macro-step's). This is the order in
+    /// which `desugar::sfc` flattens a chart: tools walking every step,
+    /// transition or action of a chart with macro-steps use it.
+    pub fn charts(&self) -> Vec<&Chart> {
+        // An explicit stack, not recursion: an importer's nesting has no
+        // depth limit.
+        let mut out = Vec::new();
+        let mut stack = vec![self];
+        while let Some(c) = stack.pop() {
+            out.push(c);
+            let bodies = c.steps.iter().filter_map(|s| s.macro_body.as_deref());
+            let at = stack.len();
+            stack.extend(bodies.map(|b| &b.chart));
+            stack[at..].reverse();
+        }
+        out
+    }
+}
+
 /// `[INITIAL_]STEP name: associations END_STEP`
 #[derive(Clone, Debug, PartialEq)]
 pub struct Step {
@@ -32,7 +54,10 @@ pub struct Step {
     pub assocs: Vec<Assoc>,
     /// A macro-step (graphical charts): a sub-chart entered through its
     /// initial step and left when its `exit` step is active and a
-    /// transition out of the macro-step fires.
+    /// transition out of the macro-step fires (the rules are in the module
+    /// comment of `desugar::sfc`). `initial` and `assocs` keep their
+    /// meaning: an initial macro-step starts with its body's initial step
+    /// active, and its associations are active while any step of its body is.
     pub macro_body: Option<Box<MacroBody>>,
     pub span: Span,
 }

@@ -23,5 +23,12 @@
 //! - `Parser::il_pou_body(end, &mut var_blocks)` does all of this for a
 //!   POU body.
 
+//!
+//! ## SFC (`sfc/`, parser side in `parser/sfc.rs`)
+//!
+//! - `sfc::desugar(chart, ...)`: what the parser calls for a textual chart.
+//! - [`crate::desugar_chart`] (`sfc::desugar_chart`): the same for a POU
+//!   whose `lang` is a chart built by an importer (macro-steps allowed).
+
 pub(crate) mod il;
 pub(crate) mod sfc;

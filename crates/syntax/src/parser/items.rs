@@ -93,7 +93,15 @@ impl Parser<'_> {
         } else if self.at_il_start() {
             self.il_pou_body(end, &mut var_blocks)
         } else {
-            (self.stmt_list(false), Lang::St)
+            let stmts = self.stmt_list(false);
+            if self.at_sfc_start() {
+                // Statements, then a chart: one error, and the chart is
+                // still parsed and checked (the statements are dropped).
+                self.statements_before_chart(&stmts);
+                self.sfc_body(kind, &mut var_blocks)
+            } else {
+                (stmts, Lang::St)
+            }
         };
         self.frames.pop();
         if !self.eat_kw(end) {

@@ -14,7 +14,9 @@
 //! them, and their hidden variables are declared once for the POU.
 //!
 //! Recovery: an element that does not parse is skipped up to the start of
-//! the next element or the end of the POU.
+//! the next element or the end of the POU. A POU body that starts with
+//! statements and then has a chart is one error (E005 over the statements,
+//! which are dropped); the chart is parsed and checked as usual.
 
 use super::expr::is_identish;
 use super::Parser;
@@ -43,6 +45,28 @@ impl Parser<'_> {
             }
             _ => false,
         }
+    }
+
+    /// Whether a chart starts here in the statement list of a POU body
+    /// itself (only the POU's frame is open: a nested statement list never
+    /// stops here). Lets a body of statements followed by a chart give one
+    /// error instead of one per chart keyword.
+    pub(super) fn at_chart_after_statements(&self) -> bool {
+        self.frames.len() == 1 && self.at_sfc_start()
+    }
+
+    /// E005 for the statements that precede a chart in a POU body (at the
+    /// chart's start when none parsed).
+    pub(super) fn statements_before_chart(&mut self, stmts: &[Stmt]) {
+        let span = match (stmts.first(), stmts.last()) {
+            (Some(f), Some(l)) => f.span.to(l.span),
+            _ => self.cur_span(),
+        };
+        self.report(Diagnostic::error(
+            Code::E005,
+            span,
+            "a POU body is either statements or a chart, not both: move these statements into an ACTION of the chart (or into another program called before it)",
+        ));
     }
 
     /// Whether the current token starts a chart element.

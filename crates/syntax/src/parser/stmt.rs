@@ -89,6 +89,9 @@ impl Parser<'_> {
             if case_arm && self.looks_like_case_label() {
                 break;
             }
+            if self.at_chart_after_statements() {
+                break;
+            }
             let before = self.pos;
             self.stmt(&mut out);
             if self.pos == before {

@@ -1,6 +1,8 @@
 //! Name resolution and structural checks of a chart, before code is
 //! generated: unknown and duplicate names (E121, E122, E131), initial steps
-//! (E123, E124), associations (E125, E126, E128, E129) and the warnings
+//! (E123, E124, per chart and macro body), macro-steps' exit steps and
+//! transitions crossing a macro body's edge (E121), associations (E125,
+//! E126, E128, E129) and the warnings
 //! about unreachable steps, steps without a way out and unused actions
 //! (W120–W122).
 //!
@@ -13,6 +15,7 @@
 //! [`MAX_MARKINGS`]; past that, reachability falls back to a structural
 //! fixpoint and "active together" to "in one step".
 
+use super::flat::Flat;
 use crate::ast::sfc::{Chart, Qualifier};
 use automat_base::{Code, Diagnostic, Interner, Span, Symbol};
 use std::collections::{HashMap, HashSet, VecDeque};
@@ -29,21 +32,41 @@ pub(super) struct Resolved {
     /// Step and action names → their index.
     pub step_of: HashMap<Symbol, usize>,
     pub action_of: HashMap<Symbol, usize>,
-    /// Per transition: the indexes of its known FROM and TO steps.
+    /// Per transition: the indexes of its known FROM and TO steps; a
+    /// macro-step is followed by its body's exit step (FROM) or initial
+    /// step (TO), and so on down nested macro-steps.
     pub from: Vec<Vec<usize>>,
     pub to: Vec<Vec<usize>>,
+    /// Per step: the index in `macros` when it is a macro-step.
+    pub macro_of: Vec<Option<usize>>,
+    /// Per macro-step of the flat chart (same order as `Flat::macros`).
+    pub macros: Vec<MacroR>,
     /// Step and action names that are also variables of the POU: their
     /// instances get hidden names (the variable keeps the name).
     pub clash: HashSet<Symbol>,
 }
 
-/// Resolves the names of `chart` against itself and the POU's variables.
+/// A macro-step, resolved.
+pub(super) struct MacroR {
+    /// Its index in the flat chart's steps.
+    pub step: usize,
+    /// Its body's initial and exit steps, when known.
+    pub entry: Option<usize>,
+    pub exit: Option<usize>,
+    /// Every step of its body and of the bodies nested in it that is not a
+    /// macro-step itself: the macro-step is active while one of them is.
+    pub body: Vec<usize>,
+}
+
+/// Resolves the names of the flat chart against itself and the POU's
+/// variables.
 pub(super) fn resolve(
-    chart: &Chart,
+    flat: &Flat,
     vars: &HashSet<Symbol>,
     interner: &Interner,
     diags: &mut Vec<Diagnostic>,
 ) -> Resolved {
+    let chart = &flat.chart;
     let mut r = Resolved {
         step_ok: vec![false; chart.steps.len()],
         action_ok: vec![false; chart.actions.len()],
@@ -51,8 +74,15 @@ pub(super) fn resolve(
         action_of: HashMap::new(),
         from: Vec::new(),
         to: Vec::new(),
+        macro_of: vec![None; chart.steps.len()],
+        macros: Vec::new(),
         clash: HashSet::new(),
     };
+    for (k, m) in flat.macros.iter().enumerate() {
+        if let Some(x) = r.macro_of.get_mut(m.step) {
+            *x = Some(k);
+        }
+    }
     // Steps and actions share one namespace: both are instances of the POU.
     let mut seen: HashMap<Symbol, Span> = HashMap::new();
     let names = chart
@@ -103,8 +133,9 @@ pub(super) fn resolve(
             r.action_of.insert(name.sym, idx);
         }
     }
+    resolve_macros(flat, &mut r, interner, diags);
     let mut tnames: HashMap<Symbol, Span> = HashMap::new();
-    for t in &chart.transitions {
+    for (ti, t) in chart.transitions.iter().enumerate() {
         if let Some(n) = t.name {
             if let Some(&first) = tnames.get(&n.sym) {
                 diags.push(
@@ -119,17 +150,134 @@ pub(super) fn resolve(
                 tnames.insert(n.sym, n.span);
             }
         }
-        let from = step_list(&r, &t.from, "FROM", interner, diags);
-        let to = step_list(&r, &t.to, "TO", interner, diags);
+        let level = flat.trans_level.get(ti).copied().unwrap_or(0);
+        let from = step_list(flat, &r, level, &t.from, "FROM", interner, diags);
+        let to = step_list(flat, &r, level, &t.to, "TO", interner, diags);
+        let from = expand(&r, from, |m| m.exit);
+        let to = expand(&r, to, |m| m.entry);
         r.from.push(from);
         r.to.push(to);
     }
     r
 }
 
-/// The known steps of a FROM/TO list (E121 for unknown ones, E131 for repeats).
+/// The entry, exit and body of each macro-step (E121 for an exit step that
+/// is not in the body; a body without an initial step is E123 in [`check`]).
+fn resolve_macros(flat: &Flat, r: &mut Resolved, interner: &Interner, diags: &mut Vec<Diagnostic>) {
+    for (k, m) in flat.macros.iter().enumerate() {
+        let level = k + 1;
+        let in_body = |i: usize| flat.step_level.get(i) == Some(&level);
+        let entry = (0..flat.chart.steps.len()).find(|&i| {
+            in_body(i)
+                && r.step_ok.get(i).copied().unwrap_or(false)
+                && flat.written_initial.get(i).copied().unwrap_or(false)
+        });
+        let mname = flat
+            .chart
+            .steps
+            .get(m.step)
+            .map_or("?", |s| interner.name(s.name.sym));
+        let xname = interner.name(m.exit.sym);
+        let exit = match r.step_of.get(&m.exit.sym) {
+            Some(&i) if in_body(i) => Some(i),
+            Some(_) => {
+                diags.push(Diagnostic::error(
+                    Code::E121,
+                    m.exit.span,
+                    format!(
+                        "the exit step `{xname}` of macro-step `{mname}` is not a step of its body"
+                    ),
+                ));
+                None
+            }
+            None => {
+                diags.push(Diagnostic::error(
+                    Code::E121,
+                    m.exit.span,
+                    format!("unknown exit step `{xname}` of macro-step `{mname}`"),
+                ));
+                None
+            }
+        };
+        let body = (0..flat.chart.steps.len())
+            .filter(|&i| {
+                r.step_ok.get(i).copied().unwrap_or(false)
+                    && r.macro_of.get(i).copied().flatten().is_none()
+                    && flat
+                        .step_level
+                        .get(i)
+                        .is_some_and(|&l| flat.nested_in(l, level))
+            })
+            .collect();
+        r.macros.push(MacroR {
+            step: m.step,
+            entry,
+            exit,
+            body,
+        });
+    }
+}
+
+/// `steps` with each macro-step followed by the step `pick` gives of its
+/// body, down nested macro-steps (an unknown one ends the chain).
+fn expand(r: &Resolved, steps: Vec<usize>, pick: impl Fn(&MacroR) -> Option<usize>) -> Vec<usize> {
+    let mut out = Vec::with_capacity(steps.len());
+    for s in steps {
+        out.push(s);
+        let mut cur = s;
+        // Each link goes one level deeper, so at most one per macro-step.
+        for _ in 0..r.macros.len() {
+            let Some(next) = r
+                .macro_of
+                .get(cur)
+                .copied()
+                .flatten()
+                .and_then(|k| r.macros.get(k))
+                .and_then(&pick)
+            else {
+                break;
+            };
+            if out.contains(&next) {
+                break;
+            }
+            out.push(next);
+            cur = next;
+        }
+    }
+    out
+}
+
+/// Why a transition of `level` cannot name a step of level `l`.
+fn other_level(flat: &Flat, level: usize, l: usize, name: &str, interner: &Interner) -> String {
+    let macro_name = |lv: usize| {
+        lv.checked_sub(1)
+            .and_then(|k| flat.macros.get(k))
+            .and_then(|m| flat.chart.steps.get(m.step))
+            .map_or("?", |s| interner.name(s.name.sym))
+    };
+    if flat.nested_in(l, level) {
+        // The macro-step of the transition's level whose body holds the step.
+        let mut lv = l;
+        for _ in 0..flat.macros.len() {
+            match flat.parent(lv) {
+                Some(p) if p != level && p < lv => lv = p,
+                _ => break,
+            }
+        }
+        let m = macro_name(lv);
+        format!("step `{name}` is inside macro-step `{m}`: a transition enters or leaves its body through `{m}`")
+    } else {
+        let m = macro_name(level);
+        format!("step `{name}` is outside the body of macro-step `{m}`: a transition of a macro body links steps of that body")
+    }
+}
+
+/// The known steps of a FROM/TO list of a transition of `level` (E121 for
+/// unknown ones and for steps of another level, E131 for repeats).
 fn step_list(
+    flat: &Flat,
     r: &Resolved,
+    level: usize,
     list: &[crate::ast::Ident],
     what: &str,
     interner: &Interner,
@@ -137,8 +285,31 @@ fn step_list(
 ) -> Vec<usize> {
     let mut out: Vec<usize> = Vec::new();
     for id in list {
-        match r.step_of.get(&id.sym) {
-            Some(&i) if out.contains(&i) => diags.push(Diagnostic::error(
+        let at = r.step_of.get(&id.sym).copied();
+        let other = at
+            .and_then(|i| flat.step_level.get(i))
+            .copied()
+            .filter(|&l| l != level);
+        if let Some(l) = other {
+            // A duplicate of this level has the name (E122 was reported).
+            let dup = flat
+                .chart
+                .steps
+                .iter()
+                .zip(&flat.step_level)
+                .any(|(s, &sl)| sl == level && s.name.sym == id.sym);
+            if dup {
+                continue;
+            }
+            diags.push(Diagnostic::error(
+                Code::E121,
+                id.span,
+                other_level(flat, level, l, interner.name(id.sym), interner),
+            ));
+            continue;
+        }
+        match at {
+            Some(i) if out.contains(&i) => diags.push(Diagnostic::error(
                 Code::E131,
                 id.span,
                 format!(
@@ -146,7 +317,7 @@ fn step_list(
                     interner.name(id.sym)
                 ),
             )),
-            Some(&i) => out.push(i),
+            Some(i) => out.push(i),
             None => diags.push(Diagnostic::error(
                 Code::E121,
                 id.span,
@@ -159,37 +330,19 @@ fn step_list(
 
 /// The checks that need resolved names.
 pub(super) fn check(
-    chart: &Chart,
+    flat: &Flat,
     r: &Resolved,
     vars: &HashSet<Symbol>,
     chart_span: Span,
     interner: &Interner,
     diags: &mut Vec<Diagnostic>,
 ) {
+    let chart = &flat.chart;
+    check_initial(flat, r, chart_span, interner, diags);
+    // The steps active at the start (an initial macro-step's entry too).
     let initial: Vec<usize> = (0..chart.steps.len())
         .filter(|&i| r.step_ok[i] && chart.steps.get(i).is_some_and(|s| s.initial))
         .collect();
-    match initial.as_slice() {
-        [] => diags.push(Diagnostic::error(
-            Code::E123,
-            chart_span,
-            "this chart has no INITIAL_STEP",
-        )),
-        [first, rest @ ..] => {
-            for &i in rest {
-                if let (Some(s), Some(f)) = (chart.steps.get(i), chart.steps.get(*first)) {
-                    diags.push(
-                        Diagnostic::error(
-                            Code::E124,
-                            s.name.span,
-                            "a chart has exactly one INITIAL_STEP",
-                        )
-                        .with_label(f.name.span, "the first initial step"),
-                    );
-                }
-            }
-        }
-    }
     check_assocs(chart, r, vars, interner, diags);
     let markings = explore(chart, r, &initial);
     check_timed(chart, r, markings.as_ref(), interner, diags);
@@ -209,8 +362,22 @@ pub(super) fn check(
                 }),
             None => fixpoint(chart.steps.len(), r, &initial),
         };
+        // The steps of a body without an initial step (E123) are never
+        // entered: that is the error, not more warnings.
+        let unentered: Vec<usize> = r
+            .macros
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.entry.is_none())
+            .map(|(k, _)| k + 1)
+            .collect();
+        let in_unentered = |i: usize| {
+            flat.step_level
+                .get(i)
+                .is_some_and(|&l| unentered.iter().any(|&u| flat.nested_in(l, u)))
+        };
         for (i, s) in chart.steps.iter().enumerate() {
-            if r.step_ok[i] && !reach.get(i).copied().unwrap_or(true) {
+            if r.step_ok[i] && !reach.get(i).copied().unwrap_or(true) && !in_unentered(i) {
                 diags.push(Diagnostic::warning(
                     Code::W120,
                     s.name.span,
@@ -222,8 +389,11 @@ pub(super) fn check(
             }
         }
     }
+    // A macro-step's exit is left with the macro-step: the warning is the
+    // macro-step's.
+    let exits: HashSet<usize> = r.macros.iter().filter_map(|m| m.exit).collect();
     for (i, s) in chart.steps.iter().enumerate() {
-        if r.step_ok[i] && !r.from.iter().any(|f| f.contains(&i)) {
+        if r.step_ok[i] && !exits.contains(&i) && !r.from.iter().any(|f| f.contains(&i)) {
             diags.push(Diagnostic::warning(
                 Code::W121,
                 s.name.span,
@@ -232,6 +402,65 @@ pub(super) fn check(
                     interner.name(s.name.sym)
                 ),
             ));
+        }
+    }
+}
+
+/// E123, E124: one initial step in the chart and in each macro body (as
+/// written in it: a body's initial step is its entry).
+fn check_initial(
+    flat: &Flat,
+    r: &Resolved,
+    chart_span: Span,
+    interner: &Interner,
+    diags: &mut Vec<Diagnostic>,
+) {
+    let steps = &flat.chart.steps;
+    for level in 0..=flat.macros.len() {
+        let written = |i: usize| {
+            flat.step_level.get(i) == Some(&level)
+                && flat.written_initial.get(i).copied().unwrap_or(false)
+        };
+        // An initial step that is a duplicate (E122) is not reported again.
+        if (0..steps.len()).any(|i| written(i) && !r.step_ok[i]) {
+            continue;
+        }
+        let initial: Vec<usize> = (0..steps.len())
+            .filter(|&i| r.step_ok[i] && written(i))
+            .collect();
+        let mac = level
+            .checked_sub(1)
+            .and_then(|k| flat.macros.get(k))
+            .and_then(|m| steps.get(m.step));
+        match (initial.as_slice(), mac) {
+            ([], None) => diags.push(Diagnostic::error(
+                Code::E123,
+                chart_span,
+                "this chart has no INITIAL_STEP",
+            )),
+            ([], Some(m)) => diags.push(Diagnostic::error(
+                Code::E123,
+                m.name.span,
+                format!(
+                    "the body of macro-step `{}` has no INITIAL_STEP: it is the step entered with the macro-step",
+                    interner.name(m.name.sym)
+                ),
+            )),
+            ([first, rest @ ..], _) => {
+                let what = if mac.is_some() {
+                    "a macro-step's body has exactly one INITIAL_STEP"
+                } else {
+                    "a chart has exactly one INITIAL_STEP"
+                };
+                for &i in rest {
+                    if let (Some(s), Some(f)) = (steps.get(i), steps.get(*first)) {
+                        diags.push(
+                            Diagnostic::error(Code::E124, s.name.span, what)
+                                .with_label(f.name.span, "the first initial step"),
+                        );
+                    }
+                }
+            }
         }
     }
 }
@@ -401,6 +630,15 @@ fn explore(chart: &Chart, r: &Resolved, initial: &[usize]) -> Option<HashSet<Vec
             }
             for &i in to {
                 *next.get_mut(i)? = true;
+            }
+            // A macro-step is active while a step of its body is (one whose
+            // body has no initial step, E123, counts as a plain step).
+            for m in r.macros.iter().filter(|m| m.entry.is_some()) {
+                let on = m
+                    .body
+                    .iter()
+                    .any(|&b| next.get(b).copied().unwrap_or(false));
+                *next.get_mut(m.step)? = on;
             }
             if !seen.contains(&next) {
                 if seen.len() >= MAX_MARKINGS {

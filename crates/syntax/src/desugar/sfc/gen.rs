@@ -276,7 +276,10 @@ impl<'c> Gen<'c, '_> {
                 continue; // no known preceding step (reported): never fires
             }
             let mut terms = Vec::new();
-            for &s in fi {
+            // A macro-step is active when its exit step is: its flag is
+            // left out of the test.
+            let plain: Vec<usize> = fi.iter().copied().filter(|&s| !self.is_macro(s)).collect();
+            for s in plain {
                 if let Some(x) = self.step_member(s, "X", sp) {
                     terms.push(x);
                 }
@@ -303,7 +306,14 @@ impl<'c> Gen<'c, '_> {
                 out.push(if_then(enabled, body, sp));
             }
         }
-        for (si, s) in chart.steps.iter().enumerate() {
+        // Ordinary steps first: a macro-step's update reads its body's new
+        // flags.
+        let steps = (0..chart.steps.len()).filter(|&i| !self.is_macro(i));
+        let macros = (0..chart.steps.len()).filter(|&i| self.is_macro(i));
+        for si in steps.chain(macros).collect::<Vec<_>>() {
+            let Some(s) = chart.steps.get(si) else {
+                continue;
+            };
             if !self.r.step_ok.get(si).copied().unwrap_or(false) {
                 continue;
             }
@@ -320,13 +330,34 @@ impl<'c> Gen<'c, '_> {
             };
             let (entered, left) = (pick(&self.r.to), pick(&self.r.from));
             let e = entered.into_iter().map(|f| var(f, sp)).collect();
-            let l = left.into_iter().map(|f| var(f, sp)).collect();
+            let l = match self.macro_body(si) {
+                // Left when it was active and no step of its body is now.
+                Some(body) => {
+                    let mut any = Vec::new();
+                    for b in body {
+                        any.extend(self.step_member(b, "X", sp));
+                    }
+                    let was = self.b.member(inst, "X", sp);
+                    binary(BinaryOp::And, was, not(or_all(any, sp), sp), sp)
+                }
+                None => or_all(left.into_iter().map(|f| var(f, sp)).collect(), sp),
+            };
             let args = vec![
                 ("__TICK", bool_lit(false, sp)),
                 ("__E", or_all(e, sp)),
-                ("__L", or_all(l, sp)),
+                ("__L", l),
             ];
             out.push(self.b.call_stmt(inst, args, sp));
         }
+    }
+
+    fn is_macro(&self, step: usize) -> bool {
+        self.r.macro_of.get(step).copied().flatten().is_some()
+    }
+
+    /// The body steps of a macro-step (see `MacroR::body`).
+    fn macro_body(&self, step: usize) -> Option<Vec<usize>> {
+        let k = self.r.macro_of.get(step).copied().flatten()?;
+        Some(self.r.macros.get(k)?.body.clone())
     }
 }

@@ -37,16 +37,86 @@
 //!    wins (X TRUE, T reset), so a step left and re-entered stays active.
 //!
 //! A chart in a FUNCTION is refused (E120): it keeps state between calls.
+//!
+//! # Macro-steps (graphical charts; IEC 60848 Grafcet macro-steps)
+//! There is no textual syntax: importers build `Step::macro_body` and call
+//! [`desugar_chart`]. The chart is flattened first (`flat.rs`), so the
+//! scheme above runs unchanged over one set of steps:
+//! - Names: the steps and actions of every body share the chart's one
+//!   namespace and keep their names (unique across the chart and all its
+//!   bodies, E122 otherwise): a body step `inner` of `M` is the instance
+//!   `inner`, read as `inner.X`/`inner.T` anywhere in the POU (conditions
+//!   and actions of the body name their steps as written). Flat order: the
+//!   chart's own steps, transitions and actions, then each body's, depth
+//!   first in source order (`Chart::charts`); so actions of a body run
+//!   after the chart's, and without PRIORITY a transition of the chart
+//!   wins over one of a body sharing a preceding step.
+//! - Structure: a transition links steps of its own chart or body (E121
+//!   for a step inside or outside a macro body); each body has exactly one
+//!   INITIAL_STEP, its entry (E123, E124), and `exit` is a step of the body
+//!   (E121).
+//! - Entering: a transition that enters `M` enters the body's initial step
+//!   (and, when that is a macro-step, its initial step, and so on) in the
+//!   same firing. An INITIAL_STEP macro-step starts with its entry active.
+//! - Leaving: a transition that leaves `M` is enabled when the body's exit
+//!   step is active (its test is `exit.X`), and firing it leaves the exit
+//!   step (nested: the exit of the exit, and so on). Other body steps still
+//!   active stay active (and so does `M`: a well-formed body has only its
+//!   exit step active by then).
+//! - `M` is a step instance like the others. `M.X` is TRUE exactly while a
+//!   step of its body (nested bodies included) is active: set by a firing
+//!   that enters `M`, cleared by the first firing after which no body step
+//!   is active. `M.T` is the time since `M` was last entered (reset by a
+//!   firing that enters it, even when it was active; counts while `M.X`;
+//!   kept after it is left), so a body's entry step and `M` agree on T
+//!   until the entry is left. Associations of `M` are those of a step
+//!   active while `M.X` (P/P1 on entering `M`, P0 on leaving it). In
+//!   phase 3 the macro-steps are updated after every other step, from their
+//!   body steps' new flags (`__L := M.X AND NOT (b1.X OR ...)`).
+//! - A `jump` transition is an ordinary transition: the flag only tells
+//!   tools how it was drawn.
 
 mod build;
 mod check;
+mod flat;
 mod gen;
 pub(crate) mod scope;
 
 use crate::ast::sfc::Chart;
-use crate::ast::{PouKind, Stmt, VarBlock};
+use crate::ast::{Body, Lang, Pou, PouKind, Stmt, VarBlock};
 use automat_base::{Code, Diagnostic, Interner, Span, Symbol};
 use std::collections::HashSet;
+
+/// The importers' entry (PLCopen XML and other graphical charts): rewrites
+/// the chart of `pou.lang` (`Lang::Sfc`, macro-steps allowed) into
+/// `pou.body`, and appends the chart's hidden declarations to
+/// `pou.var_blocks`, exactly as the parser does for a textual chart.
+/// `pou.var_blocks` must hold the POU's own declarations only (not the
+/// hidden block of an earlier desugaring); an IL text in the chart must
+/// already be rewritten (`Condition::Il::stmts`, `ActionBody::Il::stmts`)
+/// with its hidden `__CR` declared. Returns the diagnostics (chart checks
+/// E120–E131, W120–W122), unsorted; chart-wide ones point at the chart's
+/// elements (from the first to the last of the chart itself, as the parser
+/// does; `pou.span` for an empty chart). A POU that is not a chart is left
+/// as it is.
+pub fn desugar_chart(pou: &mut Pou, interner: &mut Interner) -> Vec<Diagnostic> {
+    let mut diags = Vec::new();
+    let Lang::Sfc(chart) = &pou.lang else {
+        return diags;
+    };
+    let spans = chart
+        .steps
+        .iter()
+        .map(|s| s.span)
+        .chain(chart.transitions.iter().map(|t| t.span))
+        .chain(chart.actions.iter().map(|a| a.span))
+        .filter(|s| s.file == pou.span.file);
+    let span = spans.reduce(|a, b| a.to(b)).unwrap_or(pou.span);
+    let (stmts, block) = desugar(chart, pou.kind, &pou.var_blocks, span, interner, &mut diags);
+    pou.body = Body::St(stmts);
+    pou.var_blocks.extend(block);
+    diags
+}
 
 /// The ST body and hidden declarations of a chart (nothing after E120).
 pub(crate) fn desugar(
@@ -65,24 +135,14 @@ pub(crate) fn desugar(
         ));
         return (Vec::new(), None);
     }
-    // Macro-steps come from graphical importers; their expansion into the
-    // flat chart is not written yet, and running the chart without it
-    // would be wrong, so it is refused.
-    if let Some(s) = chart.steps.iter().find(|s| s.macro_body.is_some()) {
-        diags.push(Diagnostic::error(
-            Code::E091,
-            s.span,
-            "macro-steps cannot be executed yet",
-        ));
-        return (Vec::new(), None);
-    }
     let vars: HashSet<Symbol> = var_blocks
         .iter()
         .flat_map(|b| b.decls.iter())
         .flat_map(|d| d.names.iter().map(|n| n.sym))
         .collect();
-    let resolved = check::resolve(chart, &vars, interner, diags);
-    check::check(chart, &resolved, &vars, span, interner, diags);
-    let (stmts, block) = gen::generate(chart, &resolved, &vars, span, interner);
+    let flat = flat::flatten(chart);
+    let resolved = check::resolve(&flat, &vars, interner, diags);
+    check::check(&flat, &resolved, &vars, span, interner, diags);
+    let (stmts, block) = gen::generate(&flat.chart, &resolved, &vars, span, interner);
     (stmts, Some(block))
 }
