@@ -71,6 +71,17 @@ pub fn if_then(cond: Expr, body: Vec<Stmt>, span: Span) -> Stmt {
     }
 }
 
+/// `IF cond THEN body ELSE else_body END_IF`
+pub fn if_else(cond: Expr, body: Vec<Stmt>, else_body: Vec<Stmt>, span: Span) -> Stmt {
+    Stmt {
+        kind: StmtKind::If {
+            branches: vec![CondBlock { cond, body, span }],
+            else_body: Some(else_body),
+        },
+        span,
+    }
+}
+
 /// `name : ty;`
 pub fn var(id: Ident, ty: Ident) -> VarDecl {
     VarDecl {

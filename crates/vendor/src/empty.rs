@@ -18,6 +18,7 @@ use automat_syntax::ast::sfc::{Chart, Condition};
 use automat_syntax::ast::{
     BinaryOp, Body, ExprKind, Item, Lang, LitKind, SourceUnit, Stmt, StmtKind,
 };
+use automat_syntax::lexer::{Kw, Tok};
 
 /// The transitions of a chart written with no condition: (index, span of
 /// the text from the end of the `TO` list to the end of the transition).
@@ -28,14 +29,39 @@ pub fn missing_conditions(chart: &Chart, text: &str) -> Vec<(usize, Span)> {
             continue;
         }
         let Some(last) = t.to.last() else { continue };
-        let rest = text
-            .get(last.span.end as usize..t.span.end as usize)
-            .unwrap_or(":");
-        if !rest.contains(':') {
+        // No text (spans outside the file): treat as written, so no error
+        // is voided.
+        let Some(rest) = text.get(last.span.end as usize..t.span.end as usize) else {
+            continue;
+        };
+        if is_blank(rest, t.span.file) {
             out.push((i, Span::new(t.span.file, last.span.end, t.span.end)));
         }
     }
     out
+}
+
+/// Whether the text between a transition's `TO` list and its end holds
+/// nothing but the `)` closing the list and `END_TRANSITION`: no condition
+/// was written. Anything else (a `:=` or `:`, even with a wrong condition)
+/// keeps the parser's error. Lexed, so comments do not count, whatever
+/// they contain (`(* T1: no condition *)`).
+fn is_blank(rest: &str, file: automat_base::FileId) -> bool {
+    // A scratch interner: the identifiers of this slice are not the
+    // project's business, and the lexer's diagnostics were reported when
+    // the whole file was lexed.
+    let mut scratch = Interner::new();
+    let mut diags = Vec::new();
+    let lexed = automat_syntax::lexer::lex(file, rest, &mut scratch, &mut diags);
+    let mut ends = 0;
+    for t in &lexed.toks {
+        match t.tok {
+            Tok::Kw(Kw::EndTransition) => ends += 1,
+            Tok::RParen | Tok::Eof => {}
+            _ => return false,
+        }
+    }
+    ends == 1 && diags.is_empty()
 }
 
 /// ISaGRAF: makes every transition without a condition TRUE; returns the

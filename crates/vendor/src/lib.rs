@@ -170,11 +170,23 @@ pub fn check_sources(
     diags.retain(|d| d.code != Code::E124);
     let mut has_children = false;
     if dialects.contains(&Dialect::Isagraf) {
+        // Children first: a child's chart code is then its whole body, which
+        // the child rewrite gates (an inactive child does not run its
+        // chart); the timer updates put before it afterwards stay ungated.
+        let found = children::rewrite(&mut units, &is_user, interner, &mut diags);
+        has_children = found.any;
+        let taken = found.taken;
+        // A child chart's final step is left when its parent kills it: "no
+        // transition leaves this step" (W121) misleads there.
+        diags.retain(|d| {
+            !(d.code == Code::W121
+                && found.children.iter().any(|s| {
+                    s.file == d.span.file && s.start <= d.span.start && d.span.end <= s.end
+                }))
+        });
         for unit in units.iter_mut().filter(|u| is_user(u)) {
             timer::rewrite(unit, interner, &mut diags);
         }
-        let (children, taken) = children::rewrite(&mut units, &is_user, interner, &mut diags);
-        has_children = children;
         // The chart parser reported the associations naming a child
         // program as unknown actions (E125): they are child controls.
         diags.retain(|d| !(d.code == Code::E125 && taken.contains(&d.span)));

@@ -9,6 +9,9 @@
 //! comment at the end of its line (several codes: `//~ E150 E151`), and
 //! every announced error must occur: the (line, code) lists are compared as
 //! multisets. Every E15x/E16x code must be announced by some invalid project.
+//! A valid project may announce warnings the same way (`//~ W121`): for each
+//! warning code it announces, its warnings of that code are compared, so a
+//! missing warning is pinned as well as a present one.
 
 use automat_base::{render, Code, Interner, SourceMap};
 use automat_vendor::Dialect;
@@ -52,10 +55,20 @@ fn projects(dir: &str) -> Vec<(String, Dialect, Vec<PathBuf>)> {
     out
 }
 
-/// Checks a project; (file index, line, code) of every error, the rendered
-/// report, the texts; a project without errors is also lowered (the only
+/// (file index, line, code) of a diagnostic.
+type Site = (usize, u32, Code);
+
+/// What a check found: errors, warnings, the rendered report, the texts.
+struct Checked {
+    errors: Vec<Site>,
+    warnings: Vec<Site>,
+    report: String,
+    texts: Vec<String>,
+}
+
+/// Checks a project; a project without errors is also lowered (the only
 /// lowering error allowed: E090, several programs) and its code verified.
-fn check(dialect: Dialect, files: &[PathBuf]) -> (Vec<(usize, u32, Code)>, String, Vec<String>) {
+fn check(dialect: Dialect, files: &[PathBuf]) -> Checked {
     let mut map = SourceMap::new();
     let mut texts = Vec::new();
     for f in files {
@@ -66,19 +79,26 @@ fn check(dialect: Dialect, files: &[PathBuf]) -> (Vec<(usize, u32, Code)>, Strin
     automat_vendor::add_libraries(&mut map, &[dialect]);
     let mut interner = Interner::new();
     let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &[dialect]);
+    let site = |d: &automat_base::Diagnostic| {
+        let file = d.span.file.0 as usize;
+        let line = if file < files.len() {
+            map.get(d.span.file).line_col(d.span.start).0
+        } else {
+            0
+        };
+        (file, line, d.code)
+    };
     let errors: Vec<_> = analysis
         .diagnostics
         .iter()
         .filter(|d| d.is_error())
-        .map(|d| {
-            let file = d.span.file.0 as usize;
-            let line = if file < files.len() {
-                map.get(d.span.file).line_col(d.span.start).0
-            } else {
-                0
-            };
-            (file, line, d.code)
-        })
+        .map(site)
+        .collect();
+    let warnings: Vec<_> = analysis
+        .diagnostics
+        .iter()
+        .filter(|d| !d.is_error())
+        .map(site)
         .collect();
     let mut report = render::render_report(&map, &analysis.diagnostics);
     if errors.is_empty() {
@@ -86,11 +106,21 @@ fn check(dialect: Dialect, files: &[PathBuf]) -> (Vec<(usize, u32, Code)>, Strin
         if let Err(d) = automat_lower::lower(&units, &analysis, &interner, &map, &opts) {
             if d.iter().any(|d| d.code != Code::E090) {
                 report.push_str(&render::render_report(&map, &d));
-                return (vec![(0, 0, Code::E091)], report, texts);
+                return Checked {
+                    errors: vec![(0, 0, Code::E091)],
+                    warnings,
+                    report,
+                    texts,
+                };
             }
         }
     }
-    (errors, report, texts)
+    Checked {
+        errors,
+        warnings,
+        report,
+        texts,
+    }
 }
 
 /// The `//~ CODE ...` announcements of a file: (line, code).
@@ -115,9 +145,30 @@ fn vendor_corpus_valid() {
     let all = projects("valid");
     assert!(!all.is_empty(), "no vendor projects in tests/corpus/valid");
     for (name, dialect, files) in all {
-        let (errors, report, _) = check(dialect, &files);
-        if !errors.is_empty() {
-            failures.push(format!("{name}:\n{report}"));
+        let c = check(dialect, &files);
+        if !c.errors.is_empty() {
+            failures.push(format!("{name}:\n{}", c.report));
+            continue;
+        }
+        let mut want: Vec<Site> = c
+            .texts
+            .iter()
+            .enumerate()
+            .flat_map(|(i, t)| announced(t).into_iter().map(move |(l, code)| (i, l, code)))
+            .collect();
+        let mut got: Vec<Site> = c
+            .warnings
+            .iter()
+            .filter(|w| want.iter().any(|a| a.2 == w.2))
+            .copied()
+            .collect();
+        want.sort();
+        got.sort();
+        if want != got {
+            failures.push(format!(
+                "{name}: expected warnings {want:?}\n  got {got:?}\n{}",
+                c.report
+            ));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
@@ -133,8 +184,13 @@ fn vendor_corpus_invalid() {
         "no vendor projects in tests/corpus/invalid"
     );
     for (name, dialect, files) in all {
-        let (errors, report, texts) = check(dialect, &files);
-        let mut want: Vec<(usize, u32, Code)> = texts
+        let Checked {
+            errors,
+            report,
+            texts,
+            ..
+        } = check(dialect, &files);
+        let mut want: Vec<Site> = texts
             .iter()
             .enumerate()
             .flat_map(|(i, t)| announced(t).into_iter().map(move |(l, c)| (i, l, c)))

@@ -25,17 +25,31 @@ fn steps_of(p: &Pou, interner: &Interner, diags: &mut Vec<Diagnostic>) -> Option
     }
 }
 
-/// A child's body: the first-call deactivation, the chart, then the
+/// A child's body: the first-call deactivation, the chart (gated), the
+/// parent's `edges` (when the child has children by association), then the
 /// command handling. Commands act after the chart, as a firing does: a step
 /// activated by GSTART counts its time from the next call, and its pulse
 /// actions run there.
+///
+/// The chart code (action control, boolean-action assignments, action
+/// bodies, transitions) runs only while the child is active, and in the one
+/// call after a kill or a freeze of an active child (the deactivation's
+/// final scan: N actions with Q FALSE, P0 after a kill). An ISaGRAF child
+/// that is not active is not executed: otherwise the Q = FALSE of its
+/// boolean actions would be written over what another chart drives, in
+/// every cycle. While skipped, the chart's clock is kept up to date, so the
+/// first call after a start counts one period, as a running chart would.
+/// `p.body` must be the chart code alone (the timer rewrite comes later).
 pub(super) fn child_code(
     p: &mut Pou,
     own: &[Symbol],
+    edges: Vec<automat_syntax::ast::Stmt>,
     interner: &mut Interner,
     diags: &mut Vec<Diagnostic>,
 ) {
     let Some(chart) = steps_of(p, interner, diags) else {
+        let Body::St(stmts) = &mut p.body;
+        stmts.extend(edges);
         return;
     };
     let sp = p.name.span;
@@ -44,7 +58,8 @@ pub(super) fn child_code(
     let t = build::bool_lit(true, sp);
     let boolean = build::ident(interner, "BOOL", sp);
     let boot = build::ident(interner, "__gboot", sp);
-    let mut decls = vec![build::var(boot, boolean)];
+    let last_call = build::ident(interner, "__gfinal", sp);
+    let mut decls = vec![build::var(boot, boolean), build::var(last_call, boolean)];
     // s(__TICK := FALSE, __E := e, __L := l);
     let step_call = |interner: &mut Interner, s: Ident, e: Expr, l: Expr| {
         build::call_stmt(
@@ -94,10 +109,6 @@ pub(super) fn child_code(
         ));
     }
     let set = |v: i128| build::assign(build::name(stat), build::int_lit(v, sp), sp);
-    start.push(set(1));
-    kill.push(set(0));
-    freeze.push(set(2));
-    restart.push(set(1));
     let is = |a: Ident, v: i128| {
         build::binary(
             automat_syntax::ast::BinaryOp::Eq,
@@ -106,6 +117,14 @@ pub(super) fn child_code(
             sp,
         )
     };
+    // The final call: after the kill of an active child (a frozen one
+    // had its final call after the freeze) and after a freeze.
+    kill.insert(0, build::assign(build::name(last_call), is(stat, 1), sp));
+    freeze.push(build::assign(build::name(last_call), t.clone(), sp));
+    start.push(set(1));
+    kill.push(set(0));
+    freeze.push(set(2));
+    restart.push(set(1));
     let and = |a: Expr, b: Expr| build::binary(automat_syntax::ast::BinaryOp::And, a, b, sp);
     let ne = |a: Ident, v: i128| build::not(is(a, v), sp);
     let mut boot_body = quiet_off;
@@ -127,9 +146,34 @@ pub(super) fn child_code(
         ),
         build::assign(build::name(cmd), build::int_lit(0, sp), sp),
     ];
+    // The chart's clock (`__sfc_run`, `__sfc_last` of the SFC desugaring),
+    // kept while the chart is skipped; absent when the chart was refused.
+    let declared = |name: &str| {
+        p.var_blocks
+            .iter()
+            .flat_map(|b| b.decls.iter())
+            .flat_map(|d| d.names.iter())
+            .any(|n| interner.name(n.sym) == name)
+    };
+    let mut skipped = Vec::new();
+    if declared("__sfc_run") && declared("__sfc_last") {
+        let run = build::ident(interner, "__sfc_run", sp);
+        let last = build::ident(interner, "__sfc_last", sp);
+        let scan = build::ident(interner, "__SCAN_TIME", sp);
+        skipped.push(build::assign(build::name(run), t.clone(), sp));
+        skipped.push(build::assign(build::name(last), build::call0(scan), sp));
+    }
+    let runs = build::binary(
+        automat_syntax::ast::BinaryOp::Or,
+        is(stat, 1),
+        build::name(last_call),
+        sp,
+    );
     locals(p, decls);
     let Body::St(stmts) = &mut p.body;
     let chart_code = std::mem::replace(stmts, prologue);
-    stmts.extend(chart_code);
+    stmts.push(build::if_else(runs, chart_code, skipped, sp));
+    stmts.push(build::assign(build::name(last_call), f.clone(), sp));
+    stmts.extend(edges);
     stmts.extend(epilogue);
 }

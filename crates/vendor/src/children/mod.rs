@@ -12,7 +12,11 @@
 //!   on its falling edge a kill (`c(S)`: start only, `c(R)`: kill at
 //!   activation);
 //! - in the child: before its chart, on its first call, every step is made
-//!   inactive (a child does not run until started); after its chart (where
+//!   inactive (a child does not run until started); the chart code runs
+//!   only while the child is active and in the one call after a kill or a
+//!   freeze (the final scan), since ISaGRAF does not execute an inactive
+//!   child (its boolean actions would otherwise write FALSE over what
+//!   another chart drives); after its chart (where
 //!   a firing takes effect too) the pending command is carried out through
 //!   the steps' own inputs (`__E` activates, `__L` deactivates, as a firing
 //!   would) and cleared:
@@ -69,15 +73,23 @@ struct ChildAssoc {
     qualifier: Qualifier,
 }
 
-/// Rewrites the child controls of the user units; returns whether the
-/// project has children (the section configuration is then needed), and
-/// the spans of the associations it took over (their E125 is void).
+/// What the rewrite found.
+pub struct Found {
+    /// The project has children: the section configuration is needed.
+    pub any: bool,
+    /// The associations taken over as child controls (their E125 is void).
+    pub taken: Vec<Span>,
+    /// The child programs (their whole text).
+    pub children: Vec<Span>,
+}
+
+/// Rewrites the child controls of the user units.
 pub fn rewrite(
     units: &mut [SourceUnit],
     is_user: &dyn Fn(&SourceUnit) -> bool,
     interner: &mut Interner,
     diags: &mut Vec<Diagnostic>,
-) -> (bool, Vec<Span>) {
+) -> Found {
     let programs: Vec<Symbol> = units
         .iter()
         .filter(|u| is_user(u))
@@ -122,7 +134,11 @@ pub fn rewrite(
         }
     }
     if links.is_empty() {
-        return (false, taken);
+        return Found {
+            any: false,
+            taken,
+            children: Vec::new(),
+        };
     }
     check_hierarchy(&links, interner, diags);
     let mut children: Vec<Symbol> = links.iter().map(|l| l.child).collect();
@@ -130,6 +146,7 @@ pub fn rewrite(
     children.dedup();
     // Pass 2: declarations, parent association code, child command handling.
     let mut globals = Vec::new();
+    let mut child_spans = Vec::new();
     for c in &children {
         let (cmd, stat) = hidden(interner, *c, Span::default());
         let int = build::ident(interner, "INT", Span::default());
@@ -140,6 +157,9 @@ pub fn rewrite(
         for item in &mut unit.items {
             let Item::Pou(p) = item else { continue };
             let sym = p.name.sym;
+            if children.contains(&sym) {
+                child_spans.push(p.span);
+            }
             let mut used: Vec<Symbol> = links
                 .iter()
                 .filter(|l| l.parent == sym)
@@ -154,16 +174,22 @@ pub fn rewrite(
                 continue;
             }
             externals(p, &used, interner);
-            if let Some((_, list)) = assocs.iter().find(|(s, _)| *s == sym) {
-                parent_code(p, list, interner);
-            }
+            let edges = match assocs.iter().find(|(s, _)| *s == sym) {
+                Some((_, list)) => parent_code(p, list, interner),
+                None => Vec::new(),
+            };
             if children.contains(&sym) {
                 let own: Vec<Symbol> = links
                     .iter()
                     .filter(|l| l.parent == sym)
                     .map(|l| l.child)
                     .collect();
-                child::child_code(p, &own, interner, diags);
+                // The body is still the chart code alone: the child code
+                // gates it and puts the edge detection after it.
+                child::child_code(p, &own, edges, interner, diags);
+            } else {
+                let Body::St(stmts) = &mut p.body;
+                stmts.extend(edges);
             }
         }
     }
@@ -176,7 +202,11 @@ pub fn rewrite(
             span: Span::default(),
         }));
     }
-    (true, taken)
+    Found {
+        any: true,
+        taken,
+        children: child_spans,
+    }
 }
 
 /// The call names, interned once.
@@ -422,9 +452,9 @@ fn locals(p: &mut Pou, decls: Vec<VarDecl>) {
     });
 }
 
-/// Appends the edge detection that turns `child(q)` associations into
-/// commands.
-fn parent_code(p: &mut Pou, list: &[ChildAssoc], interner: &mut Interner) {
+/// The edge detection that turns `child(q)` associations into commands
+/// (its variables are declared in `p`; the code goes after the chart).
+fn parent_code(p: &mut Pou, list: &[ChildAssoc], interner: &mut Interner) -> Vec<Stmt> {
     let boolean = build::ident(interner, "BOOL", p.name.span);
     let mut decls = Vec::new();
     let mut code = Vec::new();
@@ -468,6 +498,5 @@ fn parent_code(p: &mut Pou, list: &[ChildAssoc], interner: &mut Interner) {
         code.push(build::assign(build::name(prev), x, sp));
     }
     locals(p, decls);
-    let Body::St(stmts) = &mut p.body;
-    stmts.append(&mut code);
+    code
 }

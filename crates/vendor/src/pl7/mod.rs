@@ -16,13 +16,23 @@
 //! - `%S21` (initialise), `%S22` (reset), `%S23` (freeze): read by every
 //!   chart at the start of its call; while one is set the chart does not
 //!   evolve in that call (its transitions cannot fire). At the end of the
-//!   call `%S21` leaves every active step and enters the initial step, then
-//!   is cleared; else `%S22` leaves every active step, then is cleared
-//!   (one request per cycle, `%S21` first, as PL7 handles them). `%S23`
-//!   stays until the program clears it. Steps left or entered so behave as
-//!   after a firing: P0 / P1 sections and final scans run in the next call;
-//! - `%SW20` / `%SW21`: after each call of a chart, its number of active
-//!   steps and of enabled transitions (all preceding steps active).
+//!   call `%S21` leaves every active step and enters the initial steps;
+//!   else `%S22` leaves every active step (one request per cycle, `%S21`
+//!   first, as PL7 handles them). The request is for the whole CHART
+//!   section: the last chart program of the section (the last SFC PROGRAM
+//!   in text order, the order the section runs them) clears it after its
+//!   own handling, so every chart of the section sees it and POST sees it
+//!   cleared. `%S23` stays until the program clears it. Steps left or
+//!   entered so behave as after a firing: P0 / P1 sections and final scans
+//!   run in the next call;
+//! - `%SW20` / `%SW21`: the number of active steps and of enabled
+//!   transitions (all preceding steps active) of the whole section: each
+//!   chart adds its counts after its call to hidden totals, which the last
+//!   chart program publishes and resets.
+//!
+//! Charts in FUNCTION_BLOCKs (not PL7, allowed by the SFC flavour) follow
+//! the requests and add to the totals like any chart; in a project without
+//! a chart PROGRAM each of them clears and publishes after itself.
 //!
 //! Step objects `%Xi` are global as in PL7 (`steps`).
 //!
@@ -52,6 +62,9 @@ const SYSTEM: &[(&str, &str)] = &[
     ("_S23", "BOOL"),
     ("_SW20", "INT"),
     ("_SW21", "INT"),
+    // The counts of the charts run so far in this cycle.
+    ("__pl7_sw20", "INT"),
+    ("__pl7_sw21", "INT"),
     ("__pl7_booted", "BOOL"),
     ("__pl7_boot_time", "TIME"),
 ];
@@ -72,6 +85,19 @@ pub fn rewrite(
     let system: Vec<Symbol> = SYSTEM.iter().map(|(n, _)| interner.intern(n)).collect();
     let mut conditionless = Vec::new();
     let mut any = false;
+    // The chart that ends the CHART section: the last SFC PROGRAM in file
+    // and text order (the order `sections` runs the Sequential section in).
+    let last_chart: Option<Symbol> = units
+        .iter()
+        .filter(|u| is_user(u))
+        .flat_map(|u| u.items.iter())
+        .filter_map(|i| match i {
+            Item::Pou(p) if p.kind == PouKind::Program && matches!(p.lang, Lang::Sfc(_)) => {
+                Some(p.name.sym)
+            }
+            _ => None,
+        })
+        .last();
     for unit in units.iter_mut().filter(|u| is_user(u)) {
         let text = texts(unit);
         for item in &mut unit.items {
@@ -102,7 +128,11 @@ pub fn rewrite(
             any = true;
             externals(p, interner);
             if let Some(c) = &chart {
-                chart_code(p, c, interner);
+                let last = match last_chart {
+                    Some(l) => l == p.name.sym,
+                    None => true,
+                };
+                chart_code(p, c, last, interner);
                 let Body::St(stmts) = &mut p.body;
                 order::sections_in_pl7_order(stmts, c, interner);
             }
@@ -227,8 +257,9 @@ fn system_prologue(p: &mut Pou, interner: &mut Interner) {
 }
 
 /// The hold flag before the chart, the gate on its transitions, and the
-/// `%S21` / `%S22` handling and the counts after it.
-fn chart_code(p: &mut Pou, chart: &Chart, interner: &mut Interner) {
+/// `%S21` / `%S22` handling and the counts after it; the `last` chart of
+/// the section also clears the request and publishes the counts.
+fn chart_code(p: &mut Pou, chart: &Chart, last: bool, interner: &mut Interner) {
     let sp = p.name.span;
     let id = |interner: &mut Interner, n: &str| build::ident(interner, n, sp);
     let hold = id(interner, "__pl7_hold");
@@ -245,6 +276,7 @@ fn chart_code(p: &mut Pou, chart: &Chart, interner: &mut Interner) {
         id(interner, "_S23"),
     );
     let (sw20, sw21) = (id(interner, "_SW20"), id(interner, "_SW21"));
+    let (n20, n21) = (id(interner, "__pl7_sw20"), id(interner, "__pl7_sw21"));
     let or = |a: Expr, b: Expr| build::binary(BinaryOp::Or, a, b, sp);
     let set_hold = build::assign(
         build::name(hold),
@@ -273,10 +305,7 @@ fn chart_code(p: &mut Pou, chart: &Chart, interner: &mut Interner) {
     };
     let mut init = Vec::new();
     let mut reset = Vec::new();
-    let mut count = vec![
-        build::assign(build::name(sw20), build::int_lit(0, sp), sp),
-        build::assign(build::name(sw21), build::int_lit(0, sp), sp),
-    ];
+    let mut count = Vec::new();
     let inc = |v: Ident| {
         build::assign(
             build::name(v),
@@ -292,16 +321,22 @@ fn chart_code(p: &mut Pou, chart: &Chart, interner: &mut Interner) {
             init.push(step_call(interner, s.name, f(), x.clone()));
         }
         reset.push(step_call(interner, s.name, f(), x.clone()));
-        count.push(build::if_then(x, vec![inc(sw20)], sp));
+        count.push(build::if_then(x, vec![inc(n20)], sp));
     }
     for t in &chart.transitions {
         let mut terms = t.from.iter().map(|s| build::member(interner, *s, "X", sp));
         let Some(first) = terms.next() else { continue };
         let enabled = terms.fold(first, |a, b| build::binary(BinaryOp::And, a, b, sp));
-        count.push(build::if_then(enabled, vec![inc(sw21)], sp));
+        count.push(build::if_then(enabled, vec![inc(n21)], sp));
     }
-    init.push(build::assign(build::name(s21), f(), sp));
-    reset.push(build::assign(build::name(s22), f(), sp));
+    if last {
+        init.push(build::assign(build::name(s21), f(), sp));
+        reset.push(build::assign(build::name(s22), f(), sp));
+        for (shown, total) in [(sw20, n20), (sw21, n21)] {
+            count.push(build::assign(build::name(shown), build::name(total), sp));
+            count.push(build::assign(build::name(total), build::int_lit(0, sp), sp));
+        }
+    }
     stmts.insert(0, set_hold);
     stmts.push(build::if_chain(
         vec![(build::name(s21), init), (build::name(s22), reset)],
