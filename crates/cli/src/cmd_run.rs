@@ -11,7 +11,7 @@ use automat_lower::{lower, LowerOptions};
 use automat_runtime::io::NoIo;
 use automat_runtime::retain::{self, Loaded};
 use automat_runtime::scan::Env;
-use automat_runtime::trace::Trace;
+use automat_runtime::trace::{Column, Trace};
 use automat_runtime::{
     resolve, run, timearg, value, ClockMode, Limit, Place, RunConfig, RunEnd, RunReport,
     ScanObserver, SystemClock,
@@ -67,7 +67,10 @@ pub struct RunArgs {
     #[arg(long = "print", value_name = "VAR")]
     pub(crate) print: Vec<String>,
     /// Variables to trace, separated by commas (repeatable): one CSV row per
-    /// scan with the PLC time then each value. Needs --trace-file.
+    /// scan with the PLC time then each value. `steps(INST)` traces the
+    /// active steps of the SFC chart of instance INST (`steps(Main)`: one
+    /// cell such as `S2 S5`, drawn as a band by `automat plot`). Needs
+    /// --trace-file.
     #[arg(long, value_name = "VAR,...", requires = "trace_file")]
     pub(crate) trace: Vec<String>,
     /// The CSV file --trace writes: a header row (`time` and the variable
@@ -185,6 +188,28 @@ pub(crate) fn places(
         .collect()
 }
 
+/// The `--trace` columns: variables, and `steps(OWNER)` for the active
+/// steps of a chart (a band in `automat plot`).
+fn trace_columns(program: &Program, names: &[String]) -> Result<Vec<(String, Column)>, Outcome> {
+    names
+        .iter()
+        .map(|n| match automat_project::steps::column(program, n) {
+            Some(Ok(chart)) => Ok((n.clone(), chart.trace_column())),
+            Some(Err(e)) => {
+                eprintln!("error: --trace {n}: {e}");
+                Err(Outcome::BadInput)
+            }
+            None => match resolve(program, n) {
+                Ok(p) => Ok((n.clone(), Column::Value(p))),
+                Err(e) => {
+                    eprintln!("error: --trace {n}: {e}");
+                    Err(Outcome::BadInput)
+                }
+            },
+        })
+        .collect()
+}
+
 pub(crate) fn warm_start<E: automat_runtime::Executor>(engine: &mut E, args: &RunArgs) {
     let Some(path) = &args.retain else {
         return;
@@ -218,7 +243,7 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
     }
     let program = compile(args)?;
     let prints = places(&program, &args.print, "--print")?;
-    let traced = places(&program, &split_trace(&args.trace), "--trace")?;
+    let traced = trace_columns(&program, &split_trace(&args.trace))?;
     let mut engine = crate::engines::build(program, args.engine);
     warm_start(&mut engine, args);
 

@@ -266,15 +266,7 @@ fn steps_line(charts: &[Chart], image: &[u8]) -> Option<String> {
     }
     let each: Vec<String> = charts
         .iter()
-        .map(|c| {
-            let active = c.active(image);
-            let active = if active.is_empty() {
-                "-".to_string()
-            } else {
-                active.join(" ")
-            };
-            format!("{}: {active}", c.owner)
-        })
+        .map(|c| format!("{}: {}", c.owner, c.active_text(image)))
         .collect();
     Some(format!("  steps: {}", each.join(" | ")))
 }

@@ -15,7 +15,7 @@ use automat_project::{bind, build, PlantExec, Project, Sim};
 use automat_runtime::io::NoIo;
 use automat_runtime::retain;
 use automat_runtime::scan::Env;
-use automat_runtime::trace::csv_cell;
+use automat_runtime::trace::{csv_cell, Column};
 use automat_runtime::{
     run as run_scan, ClockMode, Executor, Limit, RunConfig, RunEnd, ScanObserver,
 };
@@ -51,10 +51,41 @@ fn refs(scope: &Scope, names: &[String], option: &str) -> Result<Vec<Ref>, Outco
         .collect()
 }
 
+/// One `--trace` column of a project run: a variable, signal or plant
+/// quantity, or `steps(OWNER)`, the active steps of a chart.
+enum TraceCol {
+    Ref(Ref),
+    Steps(Column),
+}
+
+/// Resolves `--trace` names: `steps(OWNER)` first, then as `refs` does.
+fn trace_cols(
+    scope: &Scope,
+    program: &Program,
+    names: &[String],
+) -> Result<Vec<TraceCol>, Outcome> {
+    let mut out = Vec::with_capacity(names.len());
+    for n in names {
+        match automat_project::steps::column(program, n) {
+            Some(Ok(chart)) => out.push(TraceCol::Steps(chart.trace_column())),
+            Some(Err(e)) => {
+                eprintln!("error: --trace {n}: {e}");
+                return Err(Outcome::BadInput);
+            }
+            None => out.extend(
+                refs(scope, std::slice::from_ref(n), "--trace")?
+                    .into_iter()
+                    .map(TraceCol::Ref),
+            ),
+        }
+    }
+    Ok(out)
+}
+
 /// Writes one CSV row per scan, and drives the live view.
 struct Observer {
     sim: Rc<RefCell<Sim>>,
-    trace: Option<(Vec<Ref>, BufWriter<File>)>,
+    trace: Option<(Vec<TraceCol>, BufWriter<File>)>,
     live: Option<Live>,
 }
 
@@ -65,7 +96,11 @@ impl ScanObserver for Observer {
             let mut line = automat_iec::format::format_duration(now, false);
             for c in cols.iter() {
                 line.push(',');
-                line.push_str(&csv_cell(&c.show(image, &sim)));
+                let cell = match c {
+                    TraceCol::Ref(r) => r.show(image, &sim),
+                    TraceCol::Steps(s) => s.cell(image),
+                };
+                line.push_str(&csv_cell(&cell));
             }
             line.push('\n');
             out.write_all(line.as_bytes()).map_err(|e| e.to_string())?;
@@ -149,7 +184,7 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
         bindings: &bindings,
     };
     let prints = refs(&scope, &args.print, "--print")?;
-    let traced = refs(&scope, &crate::cmd_run::split_trace(&args.trace), "--trace")?;
+    let traced = trace_cols(&scope, &program, &crate::cmd_run::split_trace(&args.trace))?;
     let mut actions = Vec::new();
     let mut scenario_ns = None;
     if let Some(path) = &args.scenario {

@@ -219,7 +219,7 @@ END_PROGRAM
             "--cycles",
             "4",
             "--trace",
-            "Ctrl.Rest.X,Ctrl.Up.X,M2S",
+            "Ctrl.Rest.X,Ctrl.Up.X,M2S,steps(Ctrl)",
             "--trace-file",
             "t.csv",
             "--print",
@@ -229,14 +229,15 @@ END_PROGRAM
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     assert_eq!(text(&out.stdout), "Ctrl.Up.X = FALSE\n");
     // Scan 1: Rest -> Up. Scan 2: Up.T is 10 ms, M2S (N) is set, then
-    // Up -> Rest. Scan 3: M2S falls, Rest -> Up; and so on.
+    // Up -> Rest. Scan 3: M2S falls, Rest -> Up; and so on. `steps(Ctrl)`
+    // is the chart's active steps as one cell (a band in `automat plot`).
     let csv = std::fs::read_to_string(dir.join("t.csv")).expect("trace");
     assert_eq!(
         csv,
-        "time,Ctrl.Rest.X,Ctrl.Up.X,M2S\n\
-         T#0s,FALSE,TRUE,FALSE\n\
-         T#10ms,TRUE,FALSE,TRUE\n\
-         T#20ms,FALSE,TRUE,FALSE\n\
-         T#30ms,TRUE,FALSE,TRUE\n"
+        "time,Ctrl.Rest.X,Ctrl.Up.X,M2S,steps(Ctrl)\n\
+         T#0s,FALSE,TRUE,FALSE,Up\n\
+         T#10ms,TRUE,FALSE,TRUE,Rest\n\
+         T#20ms,FALSE,TRUE,FALSE,Up\n\
+         T#30ms,TRUE,FALSE,TRUE,Rest\n"
     );
 }

@@ -61,6 +61,9 @@ pub struct SymbolEntry {
     pub ty: SymbolType,
     pub retain: bool,
     pub constant: bool,
+    /// The qualified name as written (`Main.fb1.Q`), for display; filled
+    /// from `path` by [`SymbolTable::new`] when left empty.
+    pub spelling: String,
 }
 
 /// All declared variables, sorted by path for lookup.
@@ -72,6 +75,9 @@ pub struct SymbolTable {
 impl SymbolTable {
     pub fn new(mut entries: Vec<SymbolEntry>) -> SymbolTable {
         for e in &mut entries {
+            if e.spelling.is_empty() {
+                e.spelling = e.path.clone();
+            }
             e.path.make_ascii_uppercase();
         }
         entries.sort_by(|a, b| a.path.cmp(&b.path));

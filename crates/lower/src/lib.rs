@@ -107,6 +107,7 @@ pub fn lower(
                 ty,
                 retain: v.retain == Retain::Retain,
                 constant: v.constant,
+                spelling: String::new(),
             });
             global_inits.push((off, bit, v.ty, v.init.clone()));
         }
@@ -252,6 +253,7 @@ fn instance_symbols(
                         ty,
                         retain: false,
                         constant: v.constant,
+                        spelling: String::new(),
                     });
                 }
                 continue;
@@ -274,6 +276,7 @@ fn instance_symbols(
             ty,
             retain: is_retain,
             constant: v.constant,
+            spelling: String::new(),
         });
     }
 }

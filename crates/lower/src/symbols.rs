@@ -106,7 +106,7 @@ pub fn symbol_type(layout: &mut Layout, interner: &Interner, ty: TypeId, depth: 
                 .iter()
                 .zip(offs)
                 .map(|(m, offset)| Field {
-                    name: interner.name(m.name).to_ascii_uppercase(),
+                    name: interner.name(m.name).to_string(),
                     offset,
                     bit: None,
                     ty: symbol_type(layout, interner, m.ty, depth + 1),
@@ -145,7 +145,7 @@ pub fn symbol_type(layout: &mut Layout, interner: &Interner, ty: TypeId, depth: 
                     if let crate::layout::Slot::Rel(offset) = slot {
                         let t = symbol_type(layout, interner, v.ty, depth + 1);
                         fields.push(Field {
-                            name: interner.name(v.name).to_ascii_uppercase(),
+                            name: interner.name(v.name).to_string(),
                             offset: *offset,
                             bit: None,
                             ty: if v.section == Section::InOut {

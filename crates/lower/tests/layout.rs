@@ -33,13 +33,13 @@ fn offsets_sizes_alignment_and_initial_image() {
             name: "PAIR".into(),
             fields: vec![
                 automat_ir::Field {
-                    name: "A".into(),
+                    name: "a".into(),
                     offset: 0,
                     bit: None,
                     ty: SymbolType::Elementary(E::Bool)
                 },
                 automat_ir::Field {
-                    name: "B".into(),
+                    name: "b".into(),
                     offset: 4,
                     bit: None,
                     ty: SymbolType::Elementary(E::Dint)

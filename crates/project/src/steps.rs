@@ -34,7 +34,36 @@ pub struct Chart {
     pub steps: Vec<Step>,
 }
 
+/// The trace column of a chart's active steps: `steps(OWNER)`.
+pub const COLUMN_PREFIX: &str = "steps(";
+
 impl Chart {
+    /// The active steps as one text cell, `GS2 GS10`, or `-` when none
+    /// is active (a timing diagram draws it as a band).
+    pub fn active_text(&self, image: &[u8]) -> String {
+        let active = self.active(image);
+        if active.is_empty() {
+            "-".to_string()
+        } else {
+            active.join(" ")
+        }
+    }
+
+    /// The column name of this chart's active steps.
+    pub fn column(&self) -> String {
+        format!("{COLUMN_PREFIX}{})", self.owner)
+    }
+
+    /// The trace column of this chart's active steps.
+    pub fn trace_column(&self) -> automat_runtime::trace::Column {
+        automat_runtime::trace::Column::Flags(
+            self.steps
+                .iter()
+                .map(|s| (s.name.clone(), s.x.clone()))
+                .collect(),
+        )
+    }
+
     /// The names of the steps active in `image`.
     pub fn active<'a>(&'a self, image: &[u8]) -> Vec<&'a str> {
         self.steps
@@ -97,21 +126,21 @@ fn walk(owner: &str, ty: &SymbolType, base: u32, depth: usize, out: &mut Vec<Cha
 /// Every chart of `program`, by owner path: one per POU instance with
 /// steps (program instances and the function-block instances inside them;
 /// arrays of instances are not searched), each with its steps in
-/// declaration (memory) order. Names are upper-case, as the symbol table
-/// stores them.
+/// declaration (memory) order. Names are spelled as declared (the symbol
+/// table's `spelling`); look owners up case-insensitively.
 pub fn charts(program: &Program) -> Vec<Chart> {
     let mut out: Vec<Chart> = Vec::new();
     for e in program.symbols.entries() {
         // The table has one entry per variable of a program instance
         // (`MAIN.S1`) or global; members of FB instances are its fields.
-        match e.path.rsplit_once('.') {
+        match e.spelling.rsplit_once('.') {
             Some((owner, name)) if is_step(&e.ty) => {
                 if let Some(x) = flag(&e.ty, e.offset) {
                     let step = Step {
                         name: name.to_string(),
                         x,
                     };
-                    match out.iter_mut().find(|c| c.owner == owner) {
+                    match out.iter_mut().find(|c| c.owner.eq_ignore_ascii_case(owner)) {
                         Some(c) => c.steps.push(step),
                         None => out.push(Chart {
                             owner: owner.to_string(),
@@ -120,7 +149,7 @@ pub fn charts(program: &Program) -> Vec<Chart> {
                     }
                 }
             }
-            _ => walk(&e.path, &e.ty, e.offset, 0, &mut out),
+            _ => walk(&e.spelling, &e.ty, e.offset, 0, &mut out),
         }
     }
     for c in &mut out {
@@ -133,3 +162,33 @@ pub fn charts(program: &Program) -> Vec<Chart> {
 #[cfg(test)]
 #[path = "steps_tests.rs"]
 mod tests;
+
+/// `steps(OWNER)`, the pseudo-variable of `--trace` (and of scenario
+/// traces) that holds the active steps of the chart of instance `OWNER`:
+/// `None` when `text` is not of that form, the chart or an error naming
+/// the instances that have one.
+pub fn column(program: &Program, text: &str) -> Option<Result<Chart, String>> {
+    let t = text.trim();
+    let inner = t
+        .get(..COLUMN_PREFIX.len())
+        .filter(|p| p.eq_ignore_ascii_case(COLUMN_PREFIX))
+        .and_then(|_| t.get(COLUMN_PREFIX.len()..))
+        .and_then(|r| r.strip_suffix(')'))?;
+    let all = charts(program);
+    let found = all
+        .iter()
+        .find(|c| c.owner.eq_ignore_ascii_case(inner.trim()))
+        .cloned();
+    Some(found.ok_or_else(|| {
+        let owners: Vec<&str> = all.iter().map(|c| c.owner.as_str()).collect();
+        if owners.is_empty() {
+            format!("`{}` has no SFC chart: the program has none", inner.trim())
+        } else {
+            format!(
+                "`{}` has no SFC chart (charts: {})",
+                inner.trim(),
+                owners.join(", ")
+            )
+        }
+    }))
+}

@@ -55,16 +55,18 @@ fn charts_of_programs_and_fb_instances_in_declaration_order() {
         names,
         [
             (
-                "MAIN".to_string(),
-                vec!["START".into(), "B1".into(), "A1".into()]
+                "Main".to_string(),
+                vec!["Start".into(), "B1".into(), "A1".into()]
             ),
-            ("MAIN.FILL".to_string(), vec!["IDLE".into(), "RUN".into()]),
+            // The interner keeps the first spelling of a name: `Fill` (the
+            // FB's) for the instance `fill`.
+            ("Main.Fill".to_string(), vec!["Idle".into(), "Run".into()]),
         ]
     );
     // Cold start: the initial steps.
     assert_eq!(
         active(&charts, &p.initial_image),
-        ["MAIN: START", "MAIN.FILL: IDLE"]
+        ["Main: Start", "Main.Fill: Idle"]
     );
 }
 
@@ -90,10 +92,26 @@ fn active_steps_follow_the_scans() {
     assert_eq!(
         seen,
         [
-            "MAIN: B1 A1 | MAIN.FILL: IDLE",
-            "MAIN: B1 A1 | MAIN.FILL: RUN",
-            "MAIN: START | MAIN.FILL: RUN",
-            "MAIN: B1 A1 | MAIN.FILL: RUN",
+            "Main: B1 A1 | Main.Fill: Idle",
+            "Main: B1 A1 | Main.Fill: Run",
+            "Main: Start | Main.Fill: Run",
+            "Main: B1 A1 | Main.Fill: Run",
         ]
     );
+}
+
+#[test]
+fn the_steps_column_names_a_chart_by_its_owner() {
+    let p = program("column");
+    let Some(Ok(c)) = column(&p, "steps(main.fill)") else {
+        panic!("no chart for main.fill")
+    };
+    assert_eq!(c.owner, "Main.Fill");
+    assert_eq!(c.column(), "steps(Main.Fill)");
+    assert_eq!(c.active_text(&p.initial_image), "Idle");
+    assert!(column(&p, "Main.Start.X").is_none(), "an ordinary path");
+    let Some(Err(e)) = column(&p, "steps(Nope)") else {
+        panic!("steps(Nope) accepted")
+    };
+    assert_eq!(e, "`Nope` has no SFC chart (charts: Main, Main.Fill)");
 }

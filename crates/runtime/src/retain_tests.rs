@@ -14,6 +14,7 @@ fn retained() -> Program {
             ty: SymbolType::Elementary(E::Dint),
             retain: true,
             constant: false,
+            spelling: String::new(),
         },
         SymbolEntry {
             path: "MAIN.W".into(),
@@ -22,6 +23,7 @@ fn retained() -> Program {
             ty: SymbolType::Elementary(E::Word),
             retain: true,
             constant: false,
+            spelling: String::new(),
         },
         SymbolEntry {
             path: "MAIN.TMP".into(),
@@ -30,6 +32,7 @@ fn retained() -> Program {
             ty: SymbolType::Elementary(E::Int),
             retain: false,
             constant: false,
+            spelling: String::new(),
         },
     ]);
     p

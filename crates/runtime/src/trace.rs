@@ -11,9 +11,46 @@ use crate::scan::ScanObserver;
 use crate::value;
 use std::io::Write;
 
-/// Writes the trace of the given places to `out`.
+/// What one column shows.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Column {
+    /// A variable, in the `--print` form.
+    Value(Place),
+    /// The names of the BOOL places that are TRUE, separated by spaces, `-`
+    /// when none is (the active steps of a chart: `steps(Main)`).
+    Flags(Vec<(String, Place)>),
+}
+
+impl From<Place> for Column {
+    fn from(p: Place) -> Column {
+        Column::Value(p)
+    }
+}
+
+impl Column {
+    /// The cell of this column for `image`.
+    pub fn cell(&self, image: &[u8]) -> String {
+        match self {
+            Column::Value(p) => value::format(image, p),
+            Column::Flags(flags) => {
+                let on: Vec<&str> = flags
+                    .iter()
+                    .filter(|(_, p)| value::format(image, p) == "TRUE")
+                    .map(|(n, _)| n.as_str())
+                    .collect();
+                if on.is_empty() {
+                    "-".to_string()
+                } else {
+                    on.join(" ")
+                }
+            }
+        }
+    }
+}
+
+/// Writes the trace of the given columns to `out`.
 pub struct Trace<W: Write> {
-    places: Vec<Place>,
+    columns: Vec<Column>,
     out: W,
     line: String,
 }
@@ -29,12 +66,12 @@ pub fn csv_cell(text: &str) -> String {
 
 impl<W: Write> Trace<W> {
     /// Writes the header row at once.
-    pub fn new(columns: Vec<(String, Place)>, mut out: W) -> Result<Trace<W>, String> {
+    pub fn new<C: Into<Column>>(columns: Vec<(String, C)>, mut out: W) -> Result<Trace<W>, String> {
         let mut header = vec!["time".to_string()];
         header.extend(columns.iter().map(|(name, _)| csv_cell(name)));
         writeln!(out, "{}", header.join(",")).map_err(|e| e.to_string())?;
         Ok(Trace {
-            places: columns.into_iter().map(|(_, p)| p).collect(),
+            columns: columns.into_iter().map(|(_, c)| c.into()).collect(),
             out,
             line: String::new(),
         })
@@ -52,9 +89,9 @@ impl<W: Write> ScanObserver for Trace<W> {
         self.line.clear();
         self.line
             .push_str(&automat_iec::format::format_duration(plc_time_ns, false));
-        for p in &self.places {
+        for c in &self.columns {
             self.line.push(',');
-            self.line.push_str(&csv_cell(&value::format(image, p)));
+            self.line.push_str(&csv_cell(&c.cell(image)));
         }
         self.line.push('\n');
         self.out
@@ -68,6 +105,25 @@ mod tests {
     use super::*;
     use crate::path::PlaceType;
     use automat_iec::Elementary as E;
+
+    #[test]
+    fn a_flags_column_names_the_true_flags() {
+        let flag = |offset| Place {
+            offset,
+            bit: None,
+            ty: PlaceType::Elementary(E::Bool),
+        };
+        let col = Column::Flags(vec![("S1".into(), flag(0)), ("S2".into(), flag(1))]);
+        assert_eq!(col.cell(&[0, 0]), "-");
+        assert_eq!(col.cell(&[1, 0]), "S1");
+        assert_eq!(col.cell(&[1, 1]), "S1 S2");
+        let mut t = Trace::new(vec![("steps(Main)".to_string(), col)], Vec::new())
+            .unwrap_or_else(|e| panic!("{e}"));
+        t.after_scan(0, &[0, 1]).unwrap_or_else(|e| panic!("{e}"));
+        let out = String::from_utf8(t.finish().unwrap_or_else(|e| panic!("{e}")))
+            .unwrap_or_default();
+        assert_eq!(out, "time,steps(Main)\nT#0s,S2\n");
+    }
 
     #[test]
     fn header_and_rows() {

@@ -76,7 +76,14 @@ fn cond_refs(c: &Cond, out: &mut Vec<usize>) {
 /// A trace column.
 struct Column {
     name: String,
-    src: Src,
+    src: ColSrc,
+}
+
+/// Where a trace column's cells come from.
+enum ColSrc {
+    Src(Src),
+    /// The active steps of a chart (`steps(OWNER)`: a band in the plot).
+    Steps(automat_runtime::trace::Column),
 }
 
 struct Observer<W: Write> {
@@ -217,9 +224,10 @@ impl<W: Write> Observer<W> {
         for c in cols.iter() {
             line.push(',');
             let cell = match &c.src {
-                Src::Place(p) => value::format(image, p),
-                Src::Signal(i) => show_value(sim.plant().get(*i)),
-                Src::Quantity(i) => show_f64(sim.plant().quantity(*i)),
+                ColSrc::Src(Src::Place(p)) => value::format(image, p),
+                ColSrc::Src(Src::Signal(i)) => show_value(sim.plant().get(*i)),
+                ColSrc::Src(Src::Quantity(i)) => show_f64(sim.plant().quantity(*i)),
+                ColSrc::Steps(c) => c.cell(image),
             };
             line.push_str(&csv_cell(&cell));
         }
@@ -243,8 +251,9 @@ impl<W: Write> ScanObserver for Observer<W> {
 }
 
 /// The columns of a scenario trace: every signal (bound: its variable),
-/// every quantity, then the other names the expectations use.
-fn columns(sim: &Sim, refs: &[Ref]) -> Vec<Column> {
+/// every quantity, the active steps of every chart, then the other names
+/// the expectations use.
+fn columns(sim: &Sim, program: &Program, refs: &[Ref]) -> Vec<Column> {
     let plant = sim.plant();
     let mut cols: Vec<Column> = plant
         .signals()
@@ -252,20 +261,29 @@ fn columns(sim: &Sim, refs: &[Ref]) -> Vec<Column> {
         .enumerate()
         .map(|(i, s)| Column {
             name: s.name.to_string(),
-            src: sim
-                .binding_of(i)
-                .map_or(Src::Signal(i), |b| Src::Place(b.place.clone())),
+            src: ColSrc::Src(
+                sim.binding_of(i)
+                    .map_or(Src::Signal(i), |b| Src::Place(b.place.clone())),
+            ),
         })
         .collect();
     cols.extend(plant.quantities().iter().enumerate().map(|(i, q)| Column {
         name: format!("plant.{}", q.name),
-        src: Src::Quantity(i),
+        src: ColSrc::Src(Src::Quantity(i)),
     }));
+    cols.extend(
+        automat_project::steps::charts(program)
+            .iter()
+            .map(|chart| Column {
+                name: chart.column(),
+                src: ColSrc::Steps(chart.trace_column()),
+            }),
+    );
     for r in refs {
         if !cols.iter().any(|c| c.name.eq_ignore_ascii_case(&r.name)) {
             cols.push(Column {
                 name: r.name.clone(),
-                src: r.src.clone(),
+                src: ColSrc::Src(r.src.clone()),
             });
         }
     }
@@ -352,7 +370,7 @@ pub fn run_on<E: Executor, W: Write>(
     for (at, a) in actions {
         sim.schedule(at, a);
     }
-    let cols = columns(&sim, &refs);
+    let cols = columns(&sim, program, &refs);
     let sim = Rc::new(RefCell::new(sim));
     let mut obs = Observer {
         sim: Rc::clone(&sim),

@@ -194,7 +194,7 @@ fn walk(off: u32, bit: Option<u8>, ty: SymbolType, rest: &str) -> (u32, Option<u
         };
         let f = fields
             .iter()
-            .find(|f| f.name == name)
+            .find(|f| f.name.eq_ignore_ascii_case(&name))
             .unwrap_or_else(|| panic!("no field {name}"));
         return walk(off + f.offset, f.bit, f.ty.clone(), &r[end..]);
     }
