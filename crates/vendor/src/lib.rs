@@ -32,6 +32,7 @@
 //! the text it came from, so diagnostics point at what the user wrote;
 //! diagnostics use the codes E150–E169 / W150–W159.
 
+mod boolact;
 mod build;
 mod children;
 mod empty;
@@ -138,6 +139,8 @@ pub fn check_sources(
     let mut diags = Vec::new();
     let mut libs: Vec<FileId> = Vec::new();
     let pl7 = dialects.contains(&Dialect::Pl7);
+    let isagraf = dialects.contains(&Dialect::Isagraf);
+    let mut negated = Vec::new();
     for (id, file) in sources.files() {
         let lib = dialects
             .iter()
@@ -149,6 +152,18 @@ pub fn check_sources(
             None
         };
         let text = pl7_text.as_deref().unwrap_or(&file.text);
+        // ISaGRAF `v;` / `/v;` associations become `v(N);`, same offsets.
+        let isa_text = if isagraf && !lib {
+            let (t, neg) = boolact::text(text);
+            negated.extend(
+                neg.into_iter()
+                    .map(|(at, s, e)| (at, automat_base::Span::new(id, s, e))),
+            );
+            t
+        } else {
+            None
+        };
+        let text = isa_text.as_deref().unwrap_or(text);
         let parsed = automat_syntax::parse(id, text, interner);
         if lib {
             libs.push(id);
@@ -169,7 +184,10 @@ pub fn check_sources(
     // one, E124): each is active at the start and after a reset.
     diags.retain(|d| d.code != Code::E124);
     let mut has_children = false;
-    if dialects.contains(&Dialect::Isagraf) {
+    if isagraf {
+        // Boolean actions are edge writes; on the chart code as the
+        // desugaring left it (before the children rewrite gates it).
+        boolact::rewrite(&mut units, &is_user, &negated, interner, &mut diags);
         // Children first: a child's chart code is then its whole body, which
         // the child rewrite gates (an inactive child does not run its
         // chart); the timer updates put before it afterwards stay ungated.

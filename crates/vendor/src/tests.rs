@@ -51,3 +51,37 @@ fn pl7_objects_without_a_chart_still_work() {
     let text = "PROGRAM p VAR a : BOOL; n : INT; END_VAR a := %S20 OR %S1; n := %SW20; END_PROGRAM";
     assert_eq!(codes(text, Dialect::Pl7), []);
 }
+
+#[test]
+fn bare_and_negated_associations_keep_offsets() {
+    let src = "PROGRAM p\n  STEP s:\n    /idle;\n    run;\n  END_STEP\n  x := a /b;\nEND_PROGRAM";
+    let (text, neg) = crate::boolact::text(src);
+    let text = text.expect("rewritten");
+    assert_eq!(text.len(), src.len());
+    // Both become N associations; the text outside the step is untouched.
+    assert!(text.contains("idle(N);"), "{text}");
+    assert!(text.contains("run(N);"), "{text}");
+    assert!(text.ends_with("  x := a /b;\nEND_PROGRAM"), "{text}");
+    let slash = src.find('/').unwrap_or(0) as u32;
+    let at = text.find("idle").unwrap_or(0) as u32;
+    assert_eq!(neg, [(at, slash, slash + 5)]);
+}
+
+#[test]
+fn bare_associations_without_blanks_are_left_to_the_parser() {
+    for src in [
+        "STEP s: run; END_STEP",
+        "STEP s: (* /a; *) END_STEP",
+        "STEP s: a(N); END_STEP",
+    ] {
+        assert_eq!(crate::boolact::text(src), (None, Vec::new()), "{src}");
+    }
+}
+
+#[test]
+fn bare_associations_need_the_isagraf_dialect() {
+    // The one step is never left: W121, no error.
+    let text = "PROGRAM p VAR v : BOOL; END_VAR\n INITIAL_STEP s:\n    v;\n END_STEP\nEND_PROGRAM";
+    assert_eq!(codes(text, Dialect::Isagraf), [Code::W121]);
+    assert_ne!(codes(text, Dialect::Pl7), []);
+}
