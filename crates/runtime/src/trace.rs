@@ -120,8 +120,8 @@ mod tests {
         let mut t = Trace::new(vec![("steps(Main)".to_string(), col)], Vec::new())
             .unwrap_or_else(|e| panic!("{e}"));
         t.after_scan(0, &[0, 1]).unwrap_or_else(|e| panic!("{e}"));
-        let out = String::from_utf8(t.finish().unwrap_or_else(|e| panic!("{e}")))
-            .unwrap_or_default();
+        let out =
+            String::from_utf8(t.finish().unwrap_or_else(|e| panic!("{e}"))).unwrap_or_default();
         assert_eq!(out, "time,steps(Main)\nT#0s,S2\n");
     }
 

@@ -18,7 +18,21 @@ struct Line<'a> {
     base: usize,
     text: &'a str,
     number: u32,
+    /// Operands read by `unary` on this line so far (see [`MAX_TERMS`]).
+    terms: usize,
+    /// NOTs and parentheses open around the current operand.
+    depth: usize,
 }
+
+/// The most operands (names, values, NOTs and parentheses) one line's
+/// condition may have, and how deeply NOT and parentheses may nest. The
+/// parser and the checker recurse once per nesting level and per operator
+/// (each level is about 10 KB of stack in a debug build), so without a
+/// bound a line of 100 000 `NOT` or `(`, or a long `a AND a AND ...`
+/// chain, overflowed the stack; real conditions have a few dozen operands
+/// and a handful of levels.
+pub const MAX_TERMS: usize = 256;
+pub const MAX_NESTING: usize = 32;
 
 type Res<T> = Result<T, Diagnostic>;
 
@@ -153,16 +167,37 @@ impl<'a> Line<'a> {
         let right = self.unary()?;
         Ok(Expr::Cmp(op, Box::new(left), Box::new(right)))
     }
+    /// `f` one level deeper (a NOT or a parenthesis), within [`MAX_NESTING`].
+    fn nested(&mut self, f: impl FnOnce(&mut Self) -> Res<Expr>) -> Res<Expr> {
+        if self.depth >= MAX_NESTING {
+            return Err(self.err(format!(
+                "NOT and parentheses nest too deeply (at most {MAX_NESTING} levels)"
+            )));
+        }
+        self.depth += 1;
+        let r = f(self);
+        self.depth -= 1;
+        r
+    }
     fn unary(&mut self) -> Res<Expr> {
+        // Every operand of a condition is read here: counting the calls
+        // bounds the size of the tree (and so the checker's recursion on a
+        // long `a AND b AND ...` chain).
+        self.terms += 1;
+        if self.terms > MAX_TERMS {
+            return Err(self.err(format!(
+                "the condition is too long (more than {MAX_TERMS} names, values, NOTs and parentheses)"
+            )));
+        }
         if self.eat_kw("NOT") {
-            return Ok(Expr::Not(Box::new(self.unary()?)));
+            return self.nested(|l| Ok(Expr::Not(Box::new(l.unary()?))));
         }
         match self.peek().cloned() {
             Some(Token {
                 tok: Tok::LParen, ..
             }) => {
                 self.pos += 1;
-                let e = self.expr()?;
+                let e = self.nested(Self::expr)?;
                 match self.peek() {
                     Some(Token {
                         tok: Tok::RParen, ..
@@ -251,7 +286,7 @@ pub fn parse(text: &str, file: FileId, default_name: &str) -> Result<Scenario, V
                 let o = u32::try_from(here + at).unwrap_or(u32::MAX);
                 errors.push(Diagnostic::error(
                     Code::E320,
-                    Span::new(file, o, o + 1),
+                    Span::new(file, o, o.saturating_add(1)),
                     msg,
                 ));
                 continue;
@@ -267,6 +302,8 @@ pub fn parse(text: &str, file: FileId, default_name: &str) -> Result<Scenario, V
             base: here,
             text: raw,
             number,
+            terms: 0,
+            depth: 0,
         };
         match statement(&mut line, &mut scn) {
             Ok(Some(())) => duration = true,
@@ -463,7 +500,7 @@ mod tests;
 pub fn parse_action(text: &str, file: FileId) -> Result<ActionKind, Diagnostic> {
     let toks = tokens(text).map_err(|(at, msg)| {
         let o = u32::try_from(at).unwrap_or(u32::MAX);
-        Diagnostic::error(Code::E320, Span::new(file, o, o + 1), msg)
+        Diagnostic::error(Code::E320, Span::new(file, o, o.saturating_add(1)), msg)
     })?;
     let mut l = Line {
         toks,
@@ -472,6 +509,8 @@ pub fn parse_action(text: &str, file: FileId) -> Result<ActionKind, Diagnostic> 
         base: 0,
         text,
         number: 1,
+        terms: 0,
+        depth: 0,
     };
     let a = action(&mut l)?;
     l.end()?;

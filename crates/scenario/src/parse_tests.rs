@@ -112,3 +112,38 @@ fn errors_point_at_the_token() {
     );
     assert_eq!(err("expect at 1s a\n").0, Code::E323);
 }
+
+/// Found by `tests/robust.rs`: 100 000 `NOT`s or `(`s, or a very long
+/// `AND` chain, overflowed the stack of the recursive parser (and of the
+/// checker). They are E320 at the operand past the limit now.
+#[test]
+fn deep_or_long_conditions_are_errors_not_stack_overflows() {
+    let deep_not = format!("duration 1s\nexpect at 1s {}x\n", "NOT ".repeat(100_000));
+    let (code, at, msg) = err(&deep_not);
+    assert_eq!(code, Code::E320);
+    assert!(msg.contains("nest too deeply"), "{msg}");
+    // At the operand after the NOT that opens one level too many.
+    assert_eq!(
+        at as usize,
+        "duration 1s\nexpect at 1s ".len() + 4 * (MAX_NESTING + 1)
+    );
+    let deep_paren = format!("duration 1s\nexpect at 1s {}x\n", "(".repeat(100_000));
+    assert!(err(&deep_paren).2.contains("nest too deeply"));
+    let long = format!("duration 1s\nexpect always x{}\n", " AND x".repeat(100_000));
+    let (code, _, msg) = err(&long);
+    assert_eq!(code, Code::E320);
+    assert!(msg.contains("too long"), "{msg}");
+    // The limits leave room for every real condition.
+    let nested = format!(
+        "duration 1s\nexpect at 1s {}x{}\n",
+        "NOT (".repeat(MAX_NESTING / 2),
+        ")".repeat(MAX_NESTING / 2)
+    );
+    assert_eq!(ok(&nested).expects.len(), 1);
+    let chain = format!(
+        "duration 1s\nexpect always x{}\n",
+        " AND x".repeat(MAX_TERMS - 1)
+    );
+    assert_eq!(ok(&chain).expects.len(), 1);
+    assert!(parse_action(&format!("press {}", "(".repeat(100_000)), FileId(0)).is_err());
+}

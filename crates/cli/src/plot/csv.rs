@@ -27,8 +27,17 @@ pub struct Trace {
     pub columns: Vec<Column>,
 }
 
+/// The most columns a trace may have (`time` included). `--trace` names
+/// its columns one by one and a scenario trace has one per signal, quantity
+/// and chart, so real traces have dozens; without a bound a header of a
+/// million empty cells became a million columns (tens of bytes each, and
+/// a diagram some 36 million pixels high).
+pub const MAX_COLUMNS: usize = 10_000;
+
 /// The cells of one CSV line (RFC 4180 quoting; no line breaks in cells).
-fn cells(line: &str) -> Vec<String> {
+/// Stops after `max` + 1 cells: the caller refuses the line then, and a
+/// line of a million commas costs no million strings.
+fn cells(line: &str, max: usize) -> Vec<String> {
     let mut out = Vec::new();
     let mut cur = String::new();
     let mut quoted = false;
@@ -40,7 +49,12 @@ fn cells(line: &str) -> Vec<String> {
                 cur.push('"');
             }
             ('"', _) => quoted = !quoted,
-            (',', false) => out.push(std::mem::take(&mut cur)),
+            (',', false) => {
+                out.push(std::mem::take(&mut cur));
+                if out.len() > max {
+                    return out;
+                }
+            }
             _ => cur.push(c),
         }
     }
@@ -52,31 +66,53 @@ fn number(cell: &str) -> Option<f64> {
     cell.parse::<f64>().ok().filter(|x| x.is_finite())
 }
 
-/// Parses a trace; errors name the line.
+/// Parses a trace; errors name the line (counting blank lines, which are
+/// skipped).
 pub fn parse(text: &str) -> Result<Trace, String> {
-    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
-    let header = cells(lines.next().ok_or("the trace is empty")?);
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l))
+        .filter(|(_, l)| !l.trim().is_empty());
+    let (first, head) = lines.next().ok_or("the trace is empty")?;
+    let header = cells(head, MAX_COLUMNS);
     if header.first().map(String::as_str) != Some("time") {
-        return Err("line 1: the first column must be `time`".into());
+        return Err(format!("line {first}: the first column must be `time`"));
     }
-    let mut times = Vec::new();
+    if header.len() > MAX_COLUMNS {
+        return Err(format!(
+            "line {first}: more than {MAX_COLUMNS} columns; a trace has at most {MAX_COLUMNS}"
+        ));
+    }
+    let mut times: Vec<i64> = Vec::new();
     let mut raw: Vec<Vec<String>> = vec![Vec::new(); header.len().saturating_sub(1)];
-    for (i, line) in lines.enumerate() {
-        let row = cells(line);
+    for (n, line) in lines {
+        let row = cells(line, header.len());
         if row.len() != header.len() {
+            let more = if row.len() > header.len() {
+                "more than "
+            } else {
+                ""
+            };
             return Err(format!(
-                "line {}: {} cells, the header has {}",
-                i + 2,
-                row.len(),
+                "line {n}: {more}{} cells, the header has {}",
+                row.len().min(header.len()),
                 header.len()
             ));
         }
         let mut it = row.into_iter();
         let t = it.next().unwrap_or_default();
-        times.push(
-            automat_runtime::timearg::parse_duration(&t)
-                .map_err(|e| format!("line {}: time: {e}", i + 2))?,
-        );
+        let t = automat_runtime::timearg::parse_duration(&t)
+            .map_err(|e| format!("line {n}: time: {e}"))?;
+        // The diagram's time axis runs from the first row to the last; a
+        // trace whose time goes back was not written by automat.
+        if times.last().is_some_and(|&last| t < last) {
+            return Err(format!(
+                "line {n}: time {} is before the previous row's",
+                automat_iec::format::format_duration(t, false)
+            ));
+        }
+        times.push(t);
         for (col, cell) in raw.iter_mut().zip(it) {
             col.push(cell);
         }
@@ -119,6 +155,15 @@ mod tests {
         assert_eq!(
             parse("time,a\nT#0s\n").unwrap_err(),
             "line 2: 1 cells, the header has 2"
+        );
+        // Blank lines count for the line number.
+        assert_eq!(
+            parse("\ntime,a\n\nT#0s,1,2\n").unwrap_err(),
+            "line 4: more than 2 cells, the header has 2"
+        );
+        assert_eq!(
+            parse("time,a\nT#1s,1\nT#0s,1\n").unwrap_err(),
+            "line 3: time T#0s is before the previous row's"
         );
     }
 }

@@ -160,10 +160,13 @@ fn analog_row(out: &mut Vec<Shape>, sc: &Scale, times: &[i64], vals: &[f64], y: 
     let lo = vals.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = vals.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let (lo, hi) = if lo.is_finite() { (lo, hi) } else { (0.0, 0.0) };
-    let range = if hi > lo { hi - lo } else { 1.0 };
+    // Halves: `hi - lo` of -1e308 and 1e308 is infinite and made every y
+    // NaN (`NaN` in the SVG path). Halving is exact, so ordinary values
+    // land where `(v - lo) / (hi - lo)` puts them.
+    let range = if hi > lo { hi / 2.0 - lo / 2.0 } else { 1.0 };
     let top = y + 5.0;
     let bottom = y + ANALOG_ROW - 5.0;
-    let yv = |v: f64| bottom - (v - lo) / range * (bottom - top);
+    let yv = |v: f64| bottom - (v / 2.0 - lo / 2.0) / range * (bottom - top);
     let segs = times
         .iter()
         .zip(vals)

@@ -96,3 +96,7 @@ pub fn run(args: &PlotArgs) -> Outcome {
         }
     }
 }
+
+#[cfg(test)]
+#[path = "robust_tests.rs"]
+mod robust_tests;

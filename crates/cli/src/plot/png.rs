@@ -86,10 +86,22 @@ fn text(pm: &mut Pixmap, x: f64, y: f64, anchor: Anchor, t: &str) {
     font::dots(t, x0, y.round() as i32, |dx, dy| dot(pm, dx, dy));
 }
 
+/// The tallest PNG written, in pixels.
+pub const MAX_HEIGHT: u32 = 16_384;
+
 /// The diagram of `trace` as a pixmap (white page).
 pub fn raster(trace: &Trace) -> Result<Pixmap, String> {
     let d = layout(trace);
     let (w, h) = (d.width.ceil() as u32, d.height.ceil() as u32);
+    // Pixmap::new takes up to 2 GB (i32 bytes); a trace of a few thousand
+    // columns asked for that much. 16384 rows (59 MB: 200 to 450 rows of the
+    // diagram) is as tall as common viewers show.
+    if h > MAX_HEIGHT {
+        return Err(format!(
+            "a {w}×{h} pixel diagram is too large for a PNG (at most {MAX_HEIGHT} pixels high): \
+             choose fewer columns with --signals, or write an SVG"
+        ));
+    }
     let mut pm = Pixmap::new(w, h)
         .ok_or_else(|| format!("a {w}×{h} pixel diagram is too large for a PNG"))?;
     pm.fill(Color::WHITE);
