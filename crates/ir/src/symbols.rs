@@ -61,6 +61,9 @@ pub struct SymbolEntry {
     pub ty: SymbolType,
     pub retain: bool,
     pub constant: bool,
+    /// A VAR_OUTPUT of a program instance: set to its safe value when the
+    /// PLC stops in its safe state.
+    pub output: bool,
     /// The qualified name as written (`Main.fb1.Q`), for display; filled
     /// from `path` by [`SymbolTable::new`] when left empty.
     pub spelling: String,

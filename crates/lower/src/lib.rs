@@ -107,6 +107,7 @@ pub fn lower(
                 ty,
                 retain: v.retain == Retain::Retain,
                 constant: v.constant,
+                output: false,
                 spelling: String::new(),
             });
             global_inits.push((off, bit, v.ty, v.init.clone()));
@@ -253,6 +254,7 @@ fn instance_symbols(
                         ty,
                         retain: false,
                         constant: v.constant,
+                        output: false,
                         spelling: String::new(),
                     });
                 }
@@ -276,6 +278,7 @@ fn instance_symbols(
             ty,
             retain: is_retain,
             constant: v.constant,
+            output: v.section == Section::Output,
             spelling: String::new(),
         });
     }

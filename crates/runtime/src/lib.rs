@@ -4,7 +4,9 @@
 //! One scan (see [`scan`]): copy the inputs into the %I area, run the tasks
 //! due at this instant (higher priority first, ties in declaration order;
 //! event tasks on the rising edge of their BOOL), copy the %Q area to the
-//! outputs. A fault stops the PLC in its safe state (%Q all zero).
+//! outputs. A fault or a stop request leaves the PLC in its safe state
+//! ([`safe`]: the %Q area, program outputs and plant-bound places at their
+//! safe values).
 //!
 //! The scan logic does no I/O: the clock ([`clock::Monotonic`]), inputs and
 //! outputs ([`io`]), the observer of each scan (tracing) and the stop request
@@ -16,7 +18,9 @@
 //! - [`schedule`]: which tasks run when (intervals, GCD base tick, events).
 //! - [`clock`]: virtual and real time, the monotonic clock.
 //! - [`scan`]: the scan loop, stop conditions, faults, statistics.
-//! - [`retain`]: the RETAIN file (atomic write, header, CRC32).
+//! - [`retain`]: the RETAIN file (atomic durable write, header, CRC32,
+//!   value checks on load, the keeper saving end-of-scan snapshots).
+//! - [`safe`]: the safe state of every output.
 //! - [`path`]: `inst.fb.Q`, `arr[2, 1].x`, `%QX0.1` → a place in the image.
 //! - [`value`]: reading a value at such a place.
 //! - [`trace`]: one CSV row per scan.
@@ -29,6 +33,7 @@ pub mod executor;
 pub mod io;
 pub mod path;
 pub mod retain;
+pub mod safe;
 pub mod scan;
 pub mod schedule;
 pub mod stats;
@@ -42,5 +47,6 @@ mod testutil;
 pub use clock::{ClockMode, Monotonic, SystemClock};
 pub use executor::Executor;
 pub use path::{resolve, Place, PlaceType};
-pub use scan::{run, Limit, RunConfig, RunEnd, RunReport, ScanObserver};
+pub use safe::SafeState;
+pub use scan::{run, run_safe, Limit, RunConfig, RunEnd, RunReport, ScanObserver};
 pub use stats::Stats;

@@ -54,8 +54,10 @@ impl PlaceType {
             PlaceType::Elementary(e) | PlaceType::Enum { base: e, .. } => {
                 e.bit_width().map_or(0, |w| w.div_ceil(8))
             }
-            PlaceType::String { cap } => cap.saturating_add(2),
-            PlaceType::WString { cap } => cap.saturating_mul(2).saturating_add(2),
+            PlaceType::String { cap } => cap.saturating_add(crate::value::STRING_LEN_BYTES),
+            PlaceType::WString { cap } => cap
+                .saturating_mul(2)
+                .saturating_add(crate::value::STRING_LEN_BYTES),
         }
     }
 }

@@ -11,6 +11,7 @@ fn entry(path: &str, offset: u32, ty: SymbolType) -> SymbolEntry {
         ty,
         retain: false,
         constant: false,
+        output: false,
         spelling: String::new(),
     }
 }

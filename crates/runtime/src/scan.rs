@@ -6,14 +6,21 @@
 //!   task ran for the n-th time (without periodic tasks: after n base ticks).
 //! - [`Limit::Duration`]`(d)`: before the first scan due at PLC time ≥ d,
 //!   so a task of interval I runs at 0, I, 2I, … < d.
-//! - the `stop` flag (Ctrl-C): checked between scans and while sleeping, so
-//!   a scan always completes.
-//! - a fault: the %Q area is zeroed (the safe state), written to the
-//!   outputs once more, and the run ends with [`RunEnd::Fault`].
+//! - the `stop` flag (Ctrl-C, SIGTERM, SIGHUP): checked between scans and
+//!   while sleeping, so a scan always completes; the PLC then goes to its
+//!   safe state ([`SafeState`]: the %Q area, every program VAR_OUTPUT and
+//!   the caller's extra places), written to the outputs once more, and the
+//!   run ends with [`RunEnd::Stopped`].
+//! - a fault: the safe state likewise, and the run ends with
+//!   [`RunEnd::Fault`].
+//!
+//! A run that reaches its limit (`--cycles`, `--duration`) ends as it is:
+//! the image is the end of its last scan, for printing and checking.
 
 use crate::clock::{ClockMode, Monotonic};
 use crate::executor::Executor;
 use crate::io::{InputSource, OutputSink};
+use crate::safe::SafeState;
 use crate::schedule::Schedule;
 use crate::stats::Stats;
 use automat_ir::{Fault, TaskDef};
@@ -126,12 +133,26 @@ struct Loop<'a, 'e, E: Executor> {
     due: Vec<usize>,
     ticks: u64,
     last_scan_ns: Option<i64>,
+    safe: &'a SafeState,
 }
 
 /// Runs the program of `exec` (whose image is already cold- or
-/// warm-started) until a stop condition. Errors only on an invalid
+/// warm-started) until a stop condition, with the default safe state of
+/// its program ([`SafeState::of_program`]). Errors only on an invalid
 /// configuration (a cycle time ≤ 0).
 pub fn run<E: Executor>(exec: &mut E, cfg: &RunConfig, env: &mut Env) -> Result<RunReport, String> {
+    let safe = SafeState::of_program(exec.program());
+    run_safe(exec, cfg, env, &safe)
+}
+
+/// [`run`] with the caller's safe state (configured safe values, places
+/// bound to a plant).
+pub fn run_safe<E: Executor>(
+    exec: &mut E,
+    cfg: &RunConfig,
+    env: &mut Env,
+    safe: &SafeState,
+) -> Result<RunReport, String> {
     let program = exec.program();
     let tasks = program.tasks.clone();
     let input = usize_range(&program.areas.input);
@@ -149,8 +170,13 @@ pub fn run<E: Executor>(exec: &mut E, cfg: &RunConfig, env: &mut Env) -> Result<
         due,
         ticks: 0,
         last_scan_ns: None,
+        safe,
     };
     let end = l.run(cfg);
+    if matches!(end, RunEnd::Stopped) {
+        let t = l.last_scan_ns.unwrap_or(0);
+        l.safe_state(t);
+    }
     l.stats.task_runs = l
         .tasks
         .iter()
@@ -277,15 +303,9 @@ impl<E: Executor> Loop<'_, '_, E> {
         }
     }
 
-    /// Every output to 0/FALSE, and the outputs told so.
+    /// Every output to its safe value, and the outputs told so.
     fn safe_state(&mut self, t: i64) {
-        if let Some(area) = self
-            .output
-            .clone()
-            .and_then(|r| self.exec.image_mut().get_mut(r))
-        {
-            area.fill(0);
-        }
+        self.safe.apply(self.exec.image_mut());
         self.write_outputs(t);
     }
 }

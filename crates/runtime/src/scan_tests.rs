@@ -416,3 +416,130 @@ fn invalid_cycle_time_is_an_error() {
         "the cycle time must be longer than 0"
     );
 }
+
+/// OUT (counter at 0, sets %Q byte 0) then BAD (counter at 8, faults on its
+/// third run), both counters RETAIN.
+fn retained_fault() -> Fake {
+    let mut p = program(vec![task(
+        "MAIN",
+        None,
+        0,
+        vec![inst("OUT", SET_OUTPUT, 0), inst("BAD", FAULT_ON_THIRD, 8)],
+    )]);
+    p.retain = vec![0..4, 8..12];
+    Fake::new(p)
+}
+
+#[test]
+fn after_a_fault_the_keeper_holds_the_image_before_the_faulting_scan() {
+    let mut f = retained_fault();
+    let dir = std::env::temp_dir().join(format!("automat-keeper-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("fault.retain");
+    let program = f.program.clone();
+    let mut inner = ();
+    let mut keeper =
+        crate::retain::Keeper::new(&program, &f.image, path.clone(), None, &mut inner).unwrap();
+    let r = run_virtual(&mut f, Limit::Cycles(10), &mut keeper);
+    assert!(matches!(r.end, RunEnd::Fault(_)), "{:?}", r.end);
+    // The faulting scan ran OUT a third time, then BAD faulted.
+    assert_eq!((f.counter(0), f.counter(8)), (3, 3));
+    assert_eq!(keeper.snapshot(), [2, 0, 0, 0, 2, 0, 0, 0]);
+    keeper.finish().unwrap();
+    let mut img = vec![0u8; 64];
+    assert_eq!(
+        crate::retain::load(&program, &path, &mut img),
+        crate::retain::Loaded::Warm
+    );
+    assert_eq!((img[0], img[8]), (2, 2));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_keeper_saves_every_period_of_plc_time_when_changed() {
+    let mut f = Fake::new(program(vec![task(
+        "MAIN",
+        None,
+        0,
+        vec![inst("MAIN", COUNT, 0)],
+    )]));
+    f.program.retain = vec![0..4];
+    let dir = std::env::temp_dir().join(format!("automat-keeper-p-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("periodic.retain");
+    let program = f.program.clone();
+    struct Seen(Vec<u8>, std::path::PathBuf);
+    impl ScanObserver for Seen {
+        fn after_scan(&mut self, _t: i64, _image: &[u8]) -> Result<(), String> {
+            // What the file held when each scan ended.
+            let mut img = vec![0u8; 64];
+            let _ = crate::retain::load(
+                &{
+                    let mut p = crate::testutil::program(vec![]);
+                    p.retain = vec![0..4];
+                    p
+                },
+                &self.1,
+                &mut img,
+            );
+            self.0.push(img[0]);
+            Ok(())
+        }
+    }
+    let mut seen = Seen(Vec::new(), path.clone());
+    let mut keeper =
+        crate::retain::Keeper::new(&program, &f.image, path.clone(), Some(30 * MS), &mut seen)
+            .unwrap();
+    let r = run_virtual(&mut f, Limit::Cycles(8), &mut keeper);
+    assert_eq!(r.end, RunEnd::Limit);
+    // Scans at 0, 10, ..., 70 ms; saves at 30 and 60 ms (counters 4, 7).
+    assert_eq!(keeper.saves, 2);
+    drop(keeper);
+    assert_eq!(seen.0, [0, 0, 0, 4, 4, 4, 7, 7]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_stop_request_ends_in_the_configured_safe_state() {
+    let stop = AtomicBool::new(false);
+    let mut obs = StopAfter {
+        n: 2,
+        stop: &stop,
+        seen: Vec::new(),
+    };
+    let mut f = Fake::new(program(vec![task(
+        "MAIN",
+        None,
+        0,
+        vec![inst("OUT", SET_OUTPUT, 0)],
+    )]));
+    f.image[45] = 0x11;
+    let mut safe = crate::SafeState::of_program(&f.program);
+    let valve = crate::resolve(&f.program, "%QX3.0").unwrap();
+    safe.set_literal("%QX3.0", &valve, "TRUE").unwrap();
+    let mut clock = crate::SystemClock::new();
+    let mut outputs = Outputs::default();
+    let mut env = Env {
+        clock: &mut clock,
+        inputs: &mut NoIo,
+        outputs: &mut outputs,
+        observer: &mut obs,
+        stop: &stop,
+    };
+    let cfg = RunConfig {
+        cycle_time_ns: 10 * MS,
+        clock: ClockMode::Virtual,
+        limit: Limit::Unbounded,
+    };
+    let r = run_safe(&mut f, &cfg, &mut env, &safe).unwrap();
+    assert_eq!(r.end, RunEnd::Stopped);
+    assert_eq!(f.image[44..48], [0, 0, 0, 1]);
+    assert_eq!(
+        outputs.0,
+        [
+            (0, vec![0xFF, 0x11, 0, 0]),
+            (10, vec![0xFF, 0x11, 0, 0]),
+            (10, vec![0, 0, 0, 1])
+        ]
+    );
+}

@@ -1,7 +1,8 @@
 //! Reading the value at a [`Place`] of the image, and its printed form
 //! (`automat run --print`, traces): the layout is the IR's (little-endian;
-//! BOOL a byte 0/1 or one bit; times i64 ns, dates i64 days; STRING[n] a u16
-//! length then n bytes; WSTRING[n] a u16 length then n u16).
+//! BOOL a byte 0/1 or one bit; times i64 ns, dates i64 days; STRING[n] a
+//! length field ([`string_len`]) then n bytes; WSTRING[n] the length field
+//! then n u16).
 
 use crate::path::{Place, PlaceType};
 use automat_iec::{format_value, Elementary as E, Value};
@@ -51,19 +52,46 @@ pub fn read_elementary(image: &[u8], offset: u32, bit: Option<u8>, ty: E) -> Opt
     })
 }
 
+/// Bytes of the length field in front of a STRING's or WSTRING's
+/// characters.
+pub const STRING_LEN_BYTES: u32 = 2;
+
+/// The stored length (in characters) of the STRING or WSTRING at `offset`:
+/// the one place the runtime reads that field, so its width is known here
+/// only. `None` when it is not inside the image.
+pub fn string_len(image: &[u8], offset: u32) -> Option<u32> {
+    Some(u16::from_le_bytes(bytes(image, offset)?).into())
+}
+
+/// Writes the length field of the STRING or WSTRING at `offset`; `None`
+/// when it is not inside the image or `len` does not fit the field.
+pub fn put_string_len(image: &mut [u8], offset: u32, len: u32) -> Option<()> {
+    let b = u16::try_from(len).ok()?.to_le_bytes();
+    let start = usize::try_from(offset).ok()?;
+    image
+        .get_mut(start..start.checked_add(b.len())?)?
+        .copy_from_slice(&b);
+    Some(())
+}
+
+/// The start of the characters of the string at `offset`.
+fn chars_start(offset: u32) -> Option<usize> {
+    usize::try_from(offset.checked_add(STRING_LEN_BYTES)?).ok()
+}
+
 /// A STRING[cap]: the stored length is clamped to the capacity, so a
 /// damaged length never reads beyond the variable.
 fn read_string(image: &[u8], offset: u32, cap: u32) -> Option<Value> {
-    let len = u16::from_le_bytes(bytes(image, offset)?).min(u16::try_from(cap).unwrap_or(u16::MAX));
-    let start = usize::try_from(offset).ok()?.checked_add(2)?;
-    let data = image.get(start..start.checked_add(usize::from(len))?)?;
+    let len = usize::try_from(string_len(image, offset)?.min(cap)).ok()?;
+    let start = chars_start(offset)?;
+    let data = image.get(start..start.checked_add(len)?)?;
     Some(Value::Str(data.to_vec()))
 }
 
 fn read_wstring(image: &[u8], offset: u32, cap: u32) -> Option<Value> {
-    let len = u16::from_le_bytes(bytes(image, offset)?).min(u16::try_from(cap).unwrap_or(u16::MAX));
-    let start = usize::try_from(offset).ok()?.checked_add(2)?;
-    let data = image.get(start..start.checked_add(usize::from(len) * 2)?)?;
+    let len = usize::try_from(string_len(image, offset)?.min(cap)).ok()?;
+    let start = chars_start(offset)?;
+    let data = image.get(start..start.checked_add(len.checked_mul(2)?)?)?;
     Some(Value::WStr(
         data.chunks_exact(2)
             .map(|c| u16::from_le_bytes([c[0], c[1]]))

@@ -11,19 +11,26 @@
 //! 24  n  payload: the retain ranges' bytes, in order
 //! 24+n 4 CRC-32 of every byte before it
 //! ```
-//! Saving is atomic: a temporary file beside the target is written and
-//! fsynced, renamed over the target, and the directory fsynced, so a power
-//! cut leaves either the old or the new file. Loading never fails hard: a
-//! missing file is a cold start; a damaged, truncated or foreign file, or
-//! one written by a different program layout, is a cold start with a
-//! warning saying why.
+//! Saving is atomic and durable ([`file`]): a power cut or kill leaves
+//! either the old or the new file. What is saved is always a consistent
+//! image, the state at the end of a completed scan ([`keeper`]). Loading
+//! never fails hard: a missing file is a cold start; a damaged, truncated
+//! or foreign file, one written by a different program layout, or one
+//! holding a value its variable's type cannot have ([`validate`]) is a
+//! cold start with a warning saying why, and is moved aside to
+//! `<file>.bad` rather than overwritten by the next save.
+
+pub mod file;
+pub mod keeper;
+pub mod validate;
 
 use crate::crc::crc32;
 use automat_ir::{Program, SymbolType};
 use std::fs;
-use std::io::Write;
 use std::ops::Range;
 use std::path::Path;
+
+pub use keeper::Keeper;
 
 const MAGIC: &[u8; 8] = b"AUTOMATR";
 const VERSION: u32 = 1;
@@ -133,19 +140,31 @@ fn usize_range(r: &Range<u32>) -> Option<Range<usize>> {
     Some(usize::try_from(r.start).ok()?..usize::try_from(r.end).ok()?)
 }
 
-/// The file's bytes for the retain ranges of `image`; `None` when a range
-/// is not inside the image.
-pub fn encode(program: &Program, image: &[u8]) -> Option<Vec<u8>> {
+/// The bytes of the retain ranges of `image`, in order; `None` when a
+/// range is not inside the image.
+pub fn payload(program: &Program, image: &[u8]) -> Option<Vec<u8>> {
     let mut payload = Vec::new();
     for r in &program.retain {
         payload.extend_from_slice(image.get(usize_range(r)?)?);
     }
+    Some(payload)
+}
+
+/// The file's bytes for the retain ranges of `image`; `None` when a range
+/// is not inside the image.
+pub fn encode(program: &Program, image: &[u8]) -> Option<Vec<u8>> {
+    encode_payload(layout_hash(program), &payload(program, image)?)
+}
+
+/// The file's bytes for a payload ([`payload`]) of a program whose layout
+/// hash is `hash`.
+pub fn encode_payload(hash: u64, payload: &[u8]) -> Option<Vec<u8>> {
     let mut out = Vec::with_capacity(HEADER + payload.len() + 4);
     out.extend_from_slice(MAGIC);
     out.extend_from_slice(&VERSION.to_le_bytes());
-    out.extend_from_slice(&layout_hash(program).to_le_bytes());
+    out.extend_from_slice(&hash.to_le_bytes());
     out.extend_from_slice(&u32::try_from(payload.len()).ok()?.to_le_bytes());
-    out.extend_from_slice(&payload);
+    out.extend_from_slice(payload);
     let crc = crc32(&out);
     out.extend_from_slice(&crc.to_le_bytes());
     Some(out)
@@ -156,7 +175,8 @@ fn field<const N: usize>(data: &[u8], at: usize) -> Option<[u8; N]> {
 }
 
 /// Restores the retain ranges of `image` from file bytes; the image is
-/// untouched unless the whole file is valid.
+/// untouched unless the whole file is valid, every value included
+/// ([`validate`]).
 pub fn decode(program: &Program, data: &[u8], image: &mut [u8]) -> Result<(), String> {
     if data.len() < 8 || data.get(..8) != Some(MAGIC.as_slice()) {
         return Err("not an automat retain file".to_string());
@@ -197,60 +217,68 @@ pub fn decode(program: &Program, data: &[u8], image: &mut [u8]) -> Result<(), St
             payload.len()
         ));
     }
+    // The values are checked on a copy, so a bad file leaves no trace.
+    let mut scratch = image.to_vec();
     let mut at = 0usize;
     for r in &program.retain {
         let dst = usize_range(r)
-            .and_then(|r| image.get_mut(r))
+            .and_then(|r| scratch.get_mut(r))
             .ok_or_else(|| "a RETAIN range lies outside the memory image".to_string())?;
-        let src = payload.get(at..at + dst.len()).ok_or_else(truncated)?;
+        let end = at.checked_add(dst.len()).ok_or_else(truncated)?;
+        let src = payload.get(at..end).ok_or_else(truncated)?;
         dst.copy_from_slice(src);
-        at += dst.len();
+        at = end;
+    }
+    if let Some(why) = validate::first_invalid(program, &scratch) {
+        return Err(format!("the RETAIN variable {why}"));
+    }
+    for r in &program.retain {
+        let range = usize_range(r).ok_or_else(truncated)?;
+        if let (Some(dst), Some(src)) = (image.get_mut(range.clone()), scratch.get(range)) {
+            dst.copy_from_slice(src);
+        }
     }
     Ok(())
 }
 
-/// Loads `path` into the retain ranges of `image` (see [`Loaded`]).
+/// Loads `path` into the retain ranges of `image` (see [`Loaded`]). A file
+/// that cannot be used is moved aside to `<file>.bad` (the message says
+/// so), so the next save keeps what it held for inspection.
 pub fn load(program: &Program, path: &Path, image: &mut [u8]) -> Loaded {
     match fs::read(path) {
         Ok(data) => match decode(program, &data, image) {
             Ok(()) => Loaded::Warm,
-            Err(why) => Loaded::Cold(why),
+            Err(why) => Loaded::Cold(match file::move_aside(path) {
+                Ok(bad) => format!("{why}; the file was moved to {}", bad.display()),
+                Err(e) => format!("{why}; it could not be moved aside: {e}"),
+            }),
         },
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Loaded::NoFile,
         Err(e) => Loaded::Cold(format!("cannot read it: {e}")),
     }
 }
 
-/// Saves the retain ranges of `image` to `path` atomically.
+/// Saves the retain ranges of `image` to `path` atomically and durably.
 pub fn save(program: &Program, path: &Path, image: &[u8]) -> Result<(), String> {
     let data = encode(program, image)
         .ok_or_else(|| "a RETAIN range lies outside the memory image".to_string())?;
-    let shown = path.display();
-    let name = path
-        .file_name()
-        .ok_or_else(|| format!("{shown}: not a file name"))?;
-    let mut tmp_name = name.to_os_string();
-    tmp_name.push(".tmp");
-    let tmp = path.with_file_name(tmp_name);
-    let write = || -> std::io::Result<()> {
-        let mut f = fs::File::create(&tmp)?;
-        f.write_all(&data)?;
-        f.sync_all()?;
-        drop(f);
-        fs::rename(&tmp, path)?;
-        // The rename is only durable once the directory entry is on disk.
-        let dir = match path.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => Path::new("."),
-        };
-        fs::File::open(dir)?.sync_all()
-    };
-    write().map_err(|e| {
-        let _ = fs::remove_file(&tmp);
-        format!("{shown}: cannot save the RETAIN variables: {e}")
-    })
+    save_bytes(path, &data)
+}
+
+/// Replaces `path` by the file bytes `data` ([`encode`]) atomically.
+pub fn save_bytes(path: &Path, data: &[u8]) -> Result<(), String> {
+    file::replace(path, data)
+        .map_err(|e| format!("{}: cannot save the RETAIN variables: {e}", path.display()))
+}
+
+/// The start-up check of a RETAIN path, before the first scan: its folder
+/// exists and takes a file of this program's size (a test save of the
+/// temporary, removed again).
+pub fn check_path(program: &Program, path: &Path) -> Result<(), String> {
+    let payload: usize = program.retain.iter().map(|r| r.len()).sum();
+    file::check_writable(path, HEADER + payload + 4)
 }
 
 #[cfg(test)]
-#[path = "retain_tests.rs"]
+#[path = "tests.rs"]
 mod tests;
