@@ -4,17 +4,18 @@
 //! command line (unknown variable, bad duration, unreadable file, `--program`
 //! naming no PROGRAM), 3 runtime fault.
 
+use crate::retain_run::{self, RetainCfg};
 use crate::{files, Outcome};
 use automat_base::{render, Code, Diagnostic, Interner, SourceMap};
 use automat_ir::Program;
 use automat_lower::{lower, LowerOptions};
 use automat_runtime::io::NoIo;
-use automat_runtime::retain::{self, Loaded};
+use automat_runtime::retain::Keeper;
 use automat_runtime::scan::Env;
 use automat_runtime::trace::{Column, Trace};
 use automat_runtime::{
-    resolve, run, timearg, value, ClockMode, Limit, Place, RunConfig, RunEnd, RunReport,
-    ScanObserver, SystemClock,
+    resolve, run_safe, timearg, value, ClockMode, Executor, Limit, Place, RunConfig, RunEnd,
+    RunReport, SafeState, ScanObserver, SystemClock,
 };
 use clap::Args;
 use std::fs::File;
@@ -31,13 +32,15 @@ use std::sync::Arc;
 ///
 /// With --cycles or --duration the run uses the virtual clock (scans back to
 /// back, PLC time of scan k exactly (k-1) x period) and stops by itself;
-/// otherwise it runs in real time until Ctrl-C, which stops at the end of
-/// the scan (RETAIN variables are saved).
+/// otherwise it runs in real time until Ctrl-C, SIGTERM or SIGHUP, which
+/// stop at the end of the scan (outputs to their safe values, RETAIN
+/// variables saved).
 ///
 /// Exit codes: 0 ok, 1 the program does not compile, 2 bad command line
-/// (including an unknown variable in --print or --trace), 3 runtime fault
-/// (outputs set to 0/FALSE; the message names the fault, the POU and
-/// file:line:col).
+/// (including an unknown variable in --print or --trace, or a --retain
+/// path that cannot be written), 3 runtime fault (every output, the %Q
+/// area and each program VAR_OUTPUT, set to its safe value; the message
+/// names the fault, the POU and file:line:col).
 #[derive(Args)]
 pub struct RunArgs {
     /// Source files or project directories (searched recursively for *.st).
@@ -79,11 +82,25 @@ pub struct RunArgs {
     #[arg(long, value_name = "FILE", requires = "trace")]
     pub(crate) trace_file: Option<PathBuf>,
     /// Keep RETAIN variables in FILE: loaded at start (warm start), saved
-    /// when the run stops (also after a runtime fault). A missing, damaged
-    /// or outdated file (the program's RETAIN variables changed) means a
-    /// cold start, with a warning for the last two.
+    /// when the run stops, always as they were at the end of the last
+    /// completed scan (after a runtime fault: before the faulting scan). A
+    /// missing file means a cold start; a damaged or outdated one (the
+    /// program's RETAIN variables changed), or one holding a value its
+    /// type cannot have, a cold start with a warning, the file moved to
+    /// FILE.bad. The folder is checked before the first scan: exit 2 if
+    /// it cannot be written (see --retain-optional). (Projects: `[retain]
+    /// file` in automat.toml.)
     #[arg(long, value_name = "FILE")]
     pub(crate) retain: Option<PathBuf>,
+    /// Also save the RETAIN variables every TIME of PLC time while running
+    /// (`10s`), so a power cut loses at most that. (Projects: `[retain]
+    /// save_every`.)
+    #[arg(long, value_name = "TIME", value_parser = timearg::parse_duration)]
+    pub(crate) retain_every: Option<i64>,
+    /// Run even when the --retain path fails its start-up check (a
+    /// warning instead of exit 2).
+    #[arg(long)]
+    pub(crate) retain_optional: bool,
     /// Cold start: ignore the --retain file (it is still written at stop).
     #[arg(long)]
     pub(crate) cold: bool,
@@ -210,17 +227,28 @@ fn trace_columns(program: &Program, names: &[String]) -> Result<Vec<(String, Col
         .collect()
 }
 
-pub(crate) fn warm_start<E: automat_runtime::Executor>(engine: &mut E, args: &RunArgs) {
-    let Some(path) = &args.retain else {
-        return;
-    };
-    if args.cold {
-        return;
+/// Asks `stop` to be set on Ctrl-C, SIGTERM (how service managers stop a
+/// process) and SIGHUP: the scan in progress completes, the outputs go to
+/// their safe values and the RETAIN variables are saved.
+pub(crate) fn stop_on_signals(stop: &Arc<AtomicBool>) {
+    let flag = Arc::clone(stop);
+    if let Err(e) = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed)) {
+        eprintln!("warning: cannot handle Ctrl-C/SIGTERM/SIGHUP ({e}); stop the PLC with a signal");
     }
-    let program = engine.program().clone();
-    match retain::load(&program, path, engine.image_mut()) {
-        Loaded::Warm | Loaded::NoFile => {}
-        Loaded::Cold(why) => eprintln!("warning: {}: {why}; cold start", path.display()),
+}
+
+/// The note after a stop in the safe state.
+pub(crate) fn safe_note(end: &RunEnd, safe: &SafeState) {
+    match end {
+        RunEnd::Fault(_) => eprintln!(
+            "note: the PLC stopped in its safe state: {}",
+            safe.describe()
+        ),
+        RunEnd::Stopped => eprintln!(
+            "note: stopped at the end of a scan, in the safe state: {}",
+            safe.describe()
+        ),
+        _ => {}
     }
 }
 
@@ -244,8 +272,10 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
     let program = compile(args)?;
     let prints = places(&program, &args.print, "--print")?;
     let traced = trace_columns(&program, &split_trace(&args.trace))?;
+    let safe = SafeState::of_program(&program);
+    let retain = RetainCfg::of(args, None);
     let mut engine = crate::engines::build(program, args.engine);
-    warm_start(&mut engine, args);
+    retain_run::start(&mut engine, retain.as_ref(), args.cold)?;
 
     let mut trace = match &args.trace_file {
         Some(path) => {
@@ -274,12 +304,7 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
     };
     let stop = Arc::new(AtomicBool::new(false));
     if limit == Limit::Unbounded {
-        // Ctrl-C only asks the loop to stop; the scan in progress completes
-        // and the RETAIN variables are saved below.
-        let flag = Arc::clone(&stop);
-        if let Err(e) = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed)) {
-            eprintln!("warning: cannot handle Ctrl-C ({e}); stop the PLC with a signal");
-        }
+        stop_on_signals(&stop);
     }
 
     let cfg = RunConfig {
@@ -290,42 +315,53 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
     let mut sys = SystemClock::new();
     let (mut inputs, mut outputs) = (NoIo, NoIo);
     let mut none = ();
-    let observer: &mut dyn ScanObserver = match trace.as_mut() {
+    let inner: &mut dyn ScanObserver = match trace.as_mut() {
         Some(t) => t,
         None => &mut none,
     };
+    let start_image = engine.image().to_vec();
+    let mut keeper = Keeper::new(
+        engine.program(),
+        &start_image,
+        retain.as_ref().map(|r| r.path.clone()),
+        retain.as_ref().and_then(|r| r.every_ns),
+        inner,
+    );
     let mut env = Env {
         clock: &mut sys,
         inputs: &mut inputs,
         outputs: &mut outputs,
-        observer,
+        observer: &mut keeper,
         stop: &stop,
     };
-    let report = run(&mut engine, &cfg, &mut env).map_err(|e| {
+    let report = run_safe(&mut engine, &cfg, &mut env, &safe).map_err(|e| {
         eprintln!("error: {e}");
         Outcome::BadInput
     })?;
-    finish(args, &engine, trace, &prints, report)
+    let saved = retain_run::finish(&mut keeper);
+    drop(keeper);
+    finish(args, &engine, trace, &prints, report, saved, &safe)
 }
 
-/// After the run: trace flushed, RETAIN saved, values printed, fault reported.
+/// After the run: trace flushed, values printed, fault reported (RETAIN
+/// was saved: `saved`).
 fn finish(
     args: &RunArgs,
     engine: &impl automat_runtime::Executor,
     trace: Option<Trace<BufWriter<File>>>,
     prints: &[(String, Place)],
     report: RunReport,
+    saved: bool,
+    safe: &SafeState,
 ) -> Result<Outcome, Outcome> {
-    let mut outcome = Outcome::Ok;
+    let mut outcome = if saved {
+        Outcome::Ok
+    } else {
+        Outcome::BadInput
+    };
     if let (Some(t), Some(path)) = (trace, &args.trace_file) {
         if let Err(e) = t.finish() {
             eprintln!("error: {}: {e}", path.display());
-            outcome = Outcome::BadInput;
-        }
-    }
-    if let Some(path) = &args.retain {
-        if let Err(e) = retain::save(engine.program(), path, engine.image()) {
-            eprintln!("error: {e}");
             outcome = Outcome::BadInput;
         }
     }
@@ -335,12 +371,12 @@ fn finish(
     if args.stats {
         eprintln!("{}", report.stats);
     }
+    if let RunEnd::Fault(f) = &report.end {
+        eprintln!("error: runtime fault: {f}");
+    }
+    safe_note(&report.end, safe);
     match report.end {
-        RunEnd::Fault(f) => {
-            eprintln!("error: runtime fault: {f}");
-            eprintln!("note: the PLC stopped; every output was set to 0/FALSE");
-            Ok(Outcome::Fault)
-        }
+        RunEnd::Fault(_) => Ok(Outcome::Fault),
         RunEnd::Observer(e) => {
             let shown = args
                 .trace_file

@@ -13,6 +13,7 @@ mod files;
 mod live;
 mod plot;
 mod project_run;
+mod retain_run;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

@@ -5,20 +5,19 @@
 //! typed commands (see [`crate::live`]). `--print` and `--trace` take
 //! variable paths, signal names of the model and `plant.<quantity>`.
 
-use crate::cmd_run::{warm_start, RunArgs};
+use crate::cmd_run::{safe_note, stop_on_signals, RunArgs};
 use crate::live::{Live, ScaledClock};
+use crate::retain_run::{self, RetainCfg};
 use crate::Outcome;
 use automat_base::{render, FileId, SourceMap, Span};
 use automat_ir::Program;
 use automat_plant::Plant;
 use automat_project::{bind, build, PlantExec, Project, Sim};
 use automat_runtime::io::NoIo;
-use automat_runtime::retain;
+use automat_runtime::retain::Keeper;
 use automat_runtime::scan::Env;
 use automat_runtime::trace::{csv_cell, Column};
-use automat_runtime::{
-    run as run_scan, ClockMode, Executor, Limit, RunConfig, RunEnd, ScanObserver,
-};
+use automat_runtime::{run_safe, ClockMode, Executor, Limit, RunConfig, RunEnd, ScanObserver};
 use automat_scenario::ast::Name;
 use automat_scenario::check::{Ref, Scope};
 use std::cell::RefCell;
@@ -26,7 +25,7 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 use std::rc::Rc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
 fn fail(map: &SourceMap, diags: &[automat_base::Diagnostic]) -> Outcome {
@@ -183,6 +182,12 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
         plant: plant.as_ref(),
         bindings: &bindings,
     };
+    let safe = automat_project::safe::build(
+        &project,
+        &program,
+        Some((plant.as_ref(), bindings.as_slice())),
+    )
+    .map_err(|d| fail(&map, &d))?;
     let prints = refs(&scope, &args.print, "--print")?;
     let traced = trace_cols(&scope, &program, &crate::cmd_run::split_trace(&args.trace))?;
     let mut actions = Vec::new();
@@ -221,10 +226,7 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
     }
     let stop = Arc::new(AtomicBool::new(false));
     if limit == Limit::Unbounded {
-        let flag = Arc::clone(&stop);
-        if let Err(e) = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed)) {
-            eprintln!("warning: cannot handle Ctrl-C ({e}); stop the PLC with a signal");
-        }
+        stop_on_signals(&stop);
     }
     let trace = match &args.trace_file {
         Some(path) => {
@@ -252,8 +254,9 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
         trace,
         live,
     };
+    let retain = RetainCfg::of(args, Some(&project.retain));
     let mut engine = crate::engines::build(program.clone(), args.engine);
-    warm_start(&mut engine, args);
+    retain_run::start(&mut engine, retain.as_ref(), args.cold)?;
     let mut exec = PlantExec::new(engine, Rc::clone(&sim));
     let cfg = RunConfig {
         cycle_time_ns: args.cycle_time.unwrap_or(project.cycle_time_ns),
@@ -262,23 +265,32 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
     };
     let mut sys = ScaledClock::new(args.speed);
     let (mut inputs, mut outputs) = (NoIo, NoIo);
-    let report = {
+    let (report, saved) = {
+        let start_image = exec.image().to_vec();
+        let mut keeper = Keeper::new(
+            &program,
+            &start_image,
+            retain.as_ref().map(|r| r.path.clone()),
+            retain.as_ref().and_then(|r| r.every_ns),
+            &mut observer,
+        );
         let mut env = Env {
             clock: &mut sys,
             inputs: &mut inputs,
             outputs: &mut outputs,
-            observer: &mut observer,
+            observer: &mut keeper,
             stop: &stop,
         };
-        run_scan(&mut exec, &cfg, &mut env).map_err(|e| {
+        let report = run_safe(&mut exec, &cfg, &mut env, &safe).map_err(|e| {
             eprintln!("error: {e}");
             Outcome::BadInput
-        })?
+        })?;
+        (report, retain_run::finish(&mut keeper))
     };
-    if matches!(report.end, RunEnd::Fault(_)) {
-        // The PLC is in its safe state: the plant is told so, whatever the
-        // variables its actuators are bound to by name last held.
-        sim.borrow_mut().safe_state();
+    if matches!(report.end, RunEnd::Fault(_) | RunEnd::Stopped) {
+        // The PLC is in its safe state: the plant is told so, with the
+        // values the runtime gave the variables its actuators are bound to.
+        sim.borrow_mut().safe_state(exec.image());
         // The plant is a physical machine: in virtual time it runs on to the
         // run's end (--duration, the scenario's duration) with every output
         // off, so `--print plant.<quantity>` shows where it came to rest. The
@@ -288,16 +300,14 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
             sim.borrow_mut().sync(*end, &mut image);
         }
     }
-    let mut outcome = Outcome::Ok;
+    let mut outcome = if saved {
+        Outcome::Ok
+    } else {
+        Outcome::BadInput
+    };
     if let Some((_, mut w)) = observer.trace.take() {
         if let Err(e) = w.flush() {
             eprintln!("error: trace: {e}");
-            outcome = Outcome::BadInput;
-        }
-    }
-    if let Some(path) = &args.retain {
-        if let Err(e) = retain::save(exec.program(), path, exec.image()) {
-            eprintln!("error: {e}");
             outcome = Outcome::BadInput;
         }
     }
@@ -316,12 +326,12 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
     if args.stats {
         eprintln!("{}", report.stats);
     }
+    if let RunEnd::Fault(f) = &report.end {
+        eprintln!("error: runtime fault: {f}");
+    }
+    safe_note(&report.end, &safe);
     match report.end {
-        RunEnd::Fault(f) => {
-            eprintln!("error: runtime fault: {f}");
-            eprintln!("note: the PLC stopped; every output was set to 0/FALSE");
-            Ok(Outcome::Fault)
-        }
+        RunEnd::Fault(_) => Ok(Outcome::Fault),
         RunEnd::Observer(e) => {
             eprintln!("error: {e}");
             Ok(Outcome::BadInput)

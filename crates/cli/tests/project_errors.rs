@@ -94,8 +94,9 @@ fn every_project_code_has_a_fixture() {
 /// A fault stops the PLC in its safe state, and the plant sees it: the crane
 /// hoists at 1 m/s until the fault in the scan at 200 ms (the model, a scan
 /// behind the outputs, is then at 0.2 m), and with every actuator off it
-/// stays there until the run's end at 1 s, although the variable bound to
-/// M2S still holds TRUE. (Seeing that variable, it would be at 1 m.)
+/// stays there until the run's end at 1 s: the safe state set the variable
+/// bound to M2S (a program variable, not an output) to FALSE as well.
+/// (Seeing it TRUE, the hoist would be at 1 m.)
 #[test]
 fn on_a_fault_the_plant_sees_every_actuator_off() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fault_safe_state");
@@ -108,11 +109,44 @@ fn on_a_fault_the_plant_sees_every_actuator_off() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(3), "{stdout}{stderr}");
     assert_eq!(
-        stdout, "plant.y = 0.2\nM2S = TRUE\nCtrl.n = 0\n",
+        stdout, "plant.y = 0.2\nM2S = FALSE\nCtrl.n = 0\n",
+        "{stderr}"
+    );
+    assert!(
+        stderr.ends_with(
+            "note: the PLC stopped in its safe state: 4 outputs (M1S, M1D, M2S, M2J) set to 0/FALSE\n"
+        ),
         "{stderr}"
     );
     assert!(
         stderr.contains("ctrl.st:12:10: fault in Ctrl: division by zero (1 / 0) (task Ctrl, program instance Ctrl, PLC time T#200ms)\n"),
+        "{stderr}"
+    );
+}
+
+/// The same program with `[safe_state] M2S = true`: the hoist motor's safe
+/// value is TRUE, so the plant keeps hoisting after the fault at 200 ms and
+/// reaches 1 m at 1 s; every other actuator is FALSE.
+#[test]
+fn configured_safe_values_reach_the_plant() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fault_safe_values");
+    let out = Command::new(env!("CARGO_BIN_EXE_automat"))
+        .args(["run", dir.to_str().unwrap_or("."), "--duration", "1s"])
+        .args(["--print", "plant.y", "--print", "M2S", "--print", "M1S"])
+        .args(["--print", "M1D", "--print", "M2J"])
+        .output()
+        .expect("run automat");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{stdout}{stderr}");
+    assert_eq!(
+        stdout, "plant.y = 1\nM2S = TRUE\nM1S = FALSE\nM1D = FALSE\nM2J = FALSE\n",
+        "{stderr}"
+    );
+    assert!(
+        stderr.ends_with(
+            "note: the PLC stopped in its safe state: 3 outputs (M1S, M1D, M2J) set to 0/FALSE; M2S set to TRUE\n"
+        ),
         "{stderr}"
     );
 }

@@ -186,7 +186,13 @@ VAR
     q AT %QX0.0 : BOOL;
     z : INT;
 END_VAR
+VAR_OUTPUT
+    y : INT;
+    on : BOOL;
+END_VAR
     q := TRUE;
+    y := 7;
+    on := TRUE;
     n := n + 1;
     IF n = 3 THEN
         z := n / (n - 3);
@@ -194,12 +200,17 @@ END_VAR
 END_PROGRAM
 ";
     let f = temp_file("fault.st", src);
-    let (code, out, err) = run(&f, &["--cycles", "10", "--print", "n", "--print", "%QX0.0"]);
+    let (code, out, err) = run(
+        &f,
+        &[
+            "--cycles", "10", "--print", "n", "--print", "%QX0.0", "--print", "y", "--print", "on",
+        ],
+    );
     assert_eq!(code, 3, "{err}");
-    assert_eq!(out, "n = 3\n%QX0.0 = FALSE\n");
+    assert_eq!(out, "n = 3\n%QX0.0 = FALSE\ny = 0\non = FALSE\n");
     assert!(err.starts_with("error: runtime fault: "), "{err}");
     assert!(
-        err.contains("fault.st:10:14: fault in main: division by zero"),
+        err.contains("fault.st:16:14: fault in main: division by zero"),
         "{err}"
     );
     assert!(
@@ -207,7 +218,10 @@ END_PROGRAM
         "{err}"
     );
     assert!(
-        err.ends_with("note: the PLC stopped; every output was set to 0/FALSE\n"),
+        err.ends_with(
+            "note: the PLC stopped in its safe state: the %Q area (1 byte) and 2 outputs \
+             (main.on, main.y) set to 0/FALSE\n"
+        ),
         "{err}"
     );
 }
@@ -269,7 +283,13 @@ fn retain_survives_a_warm_start_and_cold_resets_it() {
     assert_eq!((code, out.as_str()), (0, "r = 3\nn = 3\n"));
     assert_eq!(
         err,
-        format!("warning: {file_s}: the file is truncated; cold start\n")
+        format!(
+            "warning: {file_s}: the file is truncated; the file was moved to {file_s}.bad; cold start\n"
+        )
+    );
+    assert_eq!(
+        std::fs::read(format!("{file_s}.bad")).expect("moved aside"),
+        b"AUTOMATR\x01\x00"
     );
     // A changed program: warning and cold start.
     let changed = temp_file(

@@ -8,6 +8,16 @@
 //! file; folders searched recursively for `*.st`), or by default every
 //! `*.st` file directly beside `automat.toml` (not in sub-folders, so a
 //! folder of variants or scenarios is never compiled by accident).
+//!
+//! `[retain]`: `file` (relative to the project folder; `automat run
+//! --retain` wins), `save_every` (a duration: the RETAIN variables are also
+//! saved that often while running), `optional` (a RETAIN path that fails
+//! the start-up check is a warning, not an error). `[safe_state]`: the safe
+//! value of an output whose safe value is not 0/FALSE, by variable path,
+//! direct address or actuator signal name: `"Ctrl.valve_nc" = true`,
+//! `"%QW2" = 100` (dotted keys unquoted, `Ctrl.valve_nc = true`, mean the
+//! same); values are booleans, numbers or IEC literals in a string
+//! (`"T#5s"`, `"Mode#Hand"`).
 
 use automat_base::{Code, Diagnostic, FileId, SourceMap, Span};
 use automat_plant::{models, Plant};
@@ -29,6 +39,18 @@ struct RawFile {
     plant: Option<RawPlant>,
     #[serde(default)]
     bind: BTreeMap<Spanned<String>, Spanned<String>>,
+    retain: Option<RawRetain>,
+    #[serde(default)]
+    safe_state: BTreeMap<Spanned<String>, toml::Value>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawRetain {
+    file: Option<Spanned<String>>,
+    save_every: Option<Spanned<String>>,
+    #[serde(default)]
+    optional: bool,
 }
 
 #[derive(Deserialize)]
@@ -74,6 +96,28 @@ pub struct PlantSpec {
     pub bind: Vec<BindSpec>,
 }
 
+/// The `[retain]` table.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct RetainSpec {
+    /// The RETAIN file, relative paths already joined to the project folder.
+    pub file: Option<PathBuf>,
+    /// `save_every`: the period of saves while running, in PLC time.
+    pub save_every_ns: Option<i64>,
+    /// `optional = true`: a failed start-up check of the path is a warning.
+    pub optional: bool,
+}
+
+/// One `[safe_state]` entry: the safe value of an output.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SafeSpec {
+    /// A variable path, direct address or actuator signal name.
+    pub target: String,
+    /// The value as an IEC literal (`TRUE`, `100`, `2.5`, `T#5s`).
+    pub value: String,
+    /// The key in the project file.
+    pub span: Span,
+}
+
 /// A loaded project file.
 #[derive(Clone, Debug)]
 pub struct Project {
@@ -91,6 +135,9 @@ pub struct Project {
     /// Vendor dialects (`libraries = ["isagraf"]`, like `automat run --lib`).
     pub libraries: Vec<String>,
     pub plant: Option<PlantSpec>,
+    pub retain: RetainSpec,
+    /// `[safe_state]`, in the file's key order.
+    pub safe_state: Vec<SafeSpec>,
 }
 
 impl Project {
@@ -243,6 +290,12 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
             })
             .collect(),
     });
+    let retain = retain_spec(&dir, file, raw.retain, &mut errors);
+    let mut safe_state = Vec::new();
+    for (k, v) in raw.safe_state {
+        let span = span_of(file, k.span());
+        safe_values(k.get_ref().clone(), &v, span, &mut safe_state, &mut errors);
+    }
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -256,7 +309,85 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
         cycle_time_ns,
         libraries: raw.project.libraries,
         plant,
+        retain,
+        safe_state,
     })
+}
+
+fn retain_spec(
+    dir: &Path,
+    file: FileId,
+    raw: Option<RawRetain>,
+    errors: &mut Vec<Diagnostic>,
+) -> RetainSpec {
+    let Some(raw) = raw else {
+        return RetainSpec::default();
+    };
+    let save_every_ns = raw.save_every.and_then(|every| {
+        let span = span_of(file, every.span());
+        match automat_runtime::timearg::parse_duration(every.get_ref()) {
+            Ok(ns) if ns > 0 => Some(ns),
+            Ok(_) => {
+                errors.push(Diagnostic::error(
+                    Code::E300,
+                    span,
+                    "save_every must be longer than 0",
+                ));
+                None
+            }
+            Err(e) => {
+                errors.push(Diagnostic::error(
+                    Code::E300,
+                    span,
+                    format!("save_every: {e}"),
+                ));
+                None
+            }
+        }
+    });
+    RetainSpec {
+        file: raw.file.map(|f| dir.join(f.get_ref())),
+        save_every_ns,
+        optional: raw.optional,
+    }
+}
+
+/// The `[safe_state]` entries under `key` (a dotted key is a nested table:
+/// `Ctrl.valve = true` is `{"Ctrl": {"valve": true}}`).
+fn safe_values(
+    key: String,
+    value: &toml::Value,
+    span: Span,
+    out: &mut Vec<SafeSpec>,
+    errors: &mut Vec<Diagnostic>,
+) {
+    let text = match value {
+        toml::Value::Boolean(b) => if *b { "TRUE" } else { "FALSE" }.to_string(),
+        toml::Value::Integer(i) => i.to_string(),
+        toml::Value::Float(f) if f.is_finite() => format!("{f:?}"),
+        toml::Value::String(s) => s.clone(),
+        toml::Value::Table(t) => {
+            for (k, v) in t {
+                safe_values(format!("{key}.{k}"), v, span, out, errors);
+            }
+            return;
+        }
+        _ => {
+            errors.push(Diagnostic::error(
+                Code::E300,
+                span,
+                format!(
+                    "[safe_state] `{key}`: a safe value is a boolean, a number or an IEC literal in a string"
+                ),
+            ));
+            return;
+        }
+    };
+    out.push(SafeSpec {
+        target: key,
+        value: text,
+        span,
+    });
 }
 
 fn is_st(p: &Path) -> bool {

@@ -2,13 +2,15 @@
 //! sources and a virtual plant bound to the program.
 //!
 //! - [`file`]: the project file (`[project]`, `[plant]`, `[plant.params]`,
-//!   `[bind]`) with `file:line:col` diagnostics (E300–E308).
+//!   `[bind]`, `[retain]`, `[safe_state]`) with `file:line:col` diagnostics (E300–E308).
 //! - [`bind`]: signals → PLC variables, checked at load.
 //! - [`image`]: plant values in and out of the memory image.
 //! - [`sim`]: the coupling of the model to the scan, with overrides
 //!   (stuck sensors and actuators, noise) and timed [`sim::Action`]s.
 //! - [`exec`]: a backend wrapped so the runtime's scan loop drives the plant.
 //! - [`steps`]: the active steps of the program's charts (live view).
+//! - [`safe`]: the safe state of a run (outputs, actuator bindings,
+//!   `[safe_state]` values).
 //!
 //! The contract the plant models follow is in `crates/plant/README.md`.
 
@@ -17,10 +19,13 @@ pub mod build;
 pub mod exec;
 pub mod file;
 pub mod image;
+pub mod safe;
 pub mod sim;
 pub mod steps;
 
 pub use bind::{bind, Binding};
 pub use exec::PlantExec;
-pub use file::{find_above, load, project_file, PlantSpec, Project, FILE_NAME};
+pub use file::{
+    find_above, load, project_file, PlantSpec, Project, RetainSpec, SafeSpec, FILE_NAME,
+};
 pub use sim::{Action, Sim};

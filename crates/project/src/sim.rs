@@ -74,8 +74,10 @@ pub struct Sim {
     pub errors: Vec<(i64, String)>,
     /// PLC time of the last sync.
     pub now_ns: i64,
-    /// The PLC stopped on a fault ([`Sim::safe_state`]).
+    /// The PLC stopped on a fault or a stop request ([`Sim::safe_state`]).
     halted: bool,
+    /// The actuator values latched by [`Sim::safe_state`], by signal.
+    safe: Vec<Option<Value>>,
 }
 
 impl Sim {
@@ -108,6 +110,7 @@ impl Sim {
             errors: Vec::new(),
             now_ns: 0,
             halted: false,
+            safe: vec![None; n],
         }
     }
 
@@ -149,7 +152,7 @@ impl Sim {
             };
             let v = match self.stuck.get(b.signal).copied().flatten() {
                 Some(v) => Some(v),
-                None if self.halted => self.safe_value(b.signal),
+                None if self.halted => self.safe.get(b.signal).copied().flatten(),
                 None => image::read(image, &b.place),
             };
             if let Some(v) = v {
@@ -172,20 +175,28 @@ impl Sim {
         self.write_inputs(image);
     }
 
-    /// The PLC stopped on a fault: from now on every actuator the model
-    /// gets is 0/FALSE, as a real PLC's outputs in its safe state, whatever
-    /// the variables it was bound to by name last held. (A stuck actuator
-    /// keeps its stuck value: that fault is in the hardware.) Applied to the
-    /// model at once, so anything reading it after the run sees it.
-    pub fn safe_state(&mut self) {
+    /// The PLC stopped in its safe state, which the runtime wrote into
+    /// `image` (every variable an actuator is bound to at its safe value,
+    /// see [`crate::safe`]): from now on the model gets those values, as a
+    /// real PLC's outputs stay in their safe state, whatever is written to
+    /// the variables afterwards. A value that cannot be read is 0/FALSE. (A
+    /// stuck actuator keeps its stuck value: that fault is in the
+    /// hardware.) Applied to the model at once, so anything reading it
+    /// after the run sees it.
+    pub fn safe_state(&mut self, image: &[u8]) {
         self.halted = true;
         for &bi in &self.actuators {
-            let Some(signal) = self.bindings.get(bi).map(|b| b.signal) else {
+            let Some(b) = self.bindings.get(bi) else {
                 continue;
             };
+            let signal = b.signal;
+            let latched = image::read(image, &b.place).or_else(|| self.safe_value(signal));
+            if let Some(slot) = self.safe.get_mut(signal) {
+                *slot = latched;
+            }
             let v = match self.stuck.get(signal).copied().flatten() {
                 Some(v) => Some(v),
-                None => self.safe_value(signal),
+                None => latched,
             };
             if let Some(v) = v {
                 self.plant.set(signal, v);

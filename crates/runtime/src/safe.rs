@@ -124,10 +124,22 @@ impl SafeState {
             let s = if self.q_bytes == 1 { "" } else { "s" };
             parts.push(format!("the %Q area ({} byte{s})", self.q_bytes));
         }
-        if !self.zeroed.is_empty() {
-            let n = self.zeroed.len();
+        // A configured place is named once, with its value.
+        let zeroed: Vec<String> = self
+            .zeroed
+            .iter()
+            .filter(|z| {
+                !self
+                    .configured
+                    .iter()
+                    .any(|(c, _)| c.eq_ignore_ascii_case(z))
+            })
+            .cloned()
+            .collect();
+        if !zeroed.is_empty() {
+            let n = zeroed.len();
             let s = if n == 1 { "" } else { "s" };
-            parts.push(format!("{n} output{s} ({})", names(&self.zeroed)));
+            parts.push(format!("{n} output{s} ({})", names(&zeroed)));
         }
         let mut text = match parts.len() {
             0 => String::new(),

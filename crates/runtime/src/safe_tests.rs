@@ -151,6 +151,9 @@ fn configured_values_win_over_the_zeroing() {
     assert_eq!(img[24..28], 2.5f32.to_le_bytes());
     assert_eq!(img[36], 0b100);
     assert_eq!(img[44..48], [0b10, 0, 0, 0]);
+    assert!(safe.describe().starts_with(
+        "the %Q area (4 bytes) and 3 outputs (MAIN.GEAR, MAIN.LEVELS, MAIN.MOTOR) set"
+    ));
     assert!(safe.describe().ends_with(
         "set to 0/FALSE; MAIN.RUN set to TRUE; MAIN.SPEED set to -300; MAIN.MODE set to \
          Mode#Hand; MAIN.MSG set to 'off'; MAIN.MOTOR.rpm set to 2.5; MAIN.LAMP set to 1; \

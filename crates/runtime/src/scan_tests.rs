@@ -439,7 +439,7 @@ fn after_a_fault_the_keeper_holds_the_image_before_the_faulting_scan() {
     let program = f.program.clone();
     let mut inner = ();
     let mut keeper =
-        crate::retain::Keeper::new(&program, &f.image, path.clone(), None, &mut inner).unwrap();
+        crate::retain::Keeper::new(&program, &f.image, Some(path.clone()), None, &mut inner);
     let r = run_virtual(&mut f, Limit::Cycles(10), &mut keeper);
     assert!(matches!(r.end, RunEnd::Fault(_)), "{:?}", r.end);
     // The faulting scan ran OUT a third time, then BAD faulted.
@@ -487,9 +487,13 @@ fn the_keeper_saves_every_period_of_plc_time_when_changed() {
         }
     }
     let mut seen = Seen(Vec::new(), path.clone());
-    let mut keeper =
-        crate::retain::Keeper::new(&program, &f.image, path.clone(), Some(30 * MS), &mut seen)
-            .unwrap();
+    let mut keeper = crate::retain::Keeper::new(
+        &program,
+        &f.image,
+        Some(path.clone()),
+        Some(30 * MS),
+        &mut seen,
+    );
     let r = run_virtual(&mut f, Limit::Cycles(8), &mut keeper);
     assert_eq!(r.end, RunEnd::Limit);
     // Scans at 0, 10, ..., 70 ms; saves at 30 and 60 ms (counters 4, 7).

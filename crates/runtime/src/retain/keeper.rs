@@ -20,12 +20,14 @@ use std::ops::Range;
 use std::path::PathBuf;
 
 pub struct Keeper<'a> {
-    path: PathBuf,
+    /// `None`: no RETAIN file, the keeper only passes scans on.
+    path: Option<PathBuf>,
     ranges: Vec<Range<usize>>,
     hash: u64,
     every_ns: Option<i64>,
-    /// The retain ranges at the end of the last completed scan.
-    snapshot: Vec<u8>,
+    /// The retain ranges at the end of the last completed scan (`None`
+    /// when a range is not inside the image).
+    snapshot: Option<Vec<u8>>,
     /// What the file holds (`None` until this run saved it).
     saved: Option<Vec<u8>>,
     last_save_ns: Option<i64>,
@@ -33,54 +35,58 @@ pub struct Keeper<'a> {
     /// Periodic saves that failed, and the message of the last one.
     pub failures: u64,
     pub last_error: Option<String>,
-    /// Periodic saves done.
+    /// Periodic saves that wrote the file (an unchanged snapshot is not
+    /// written again).
     pub saves: u64,
 }
 
 impl<'a> Keeper<'a> {
-    /// A keeper of `path` for `program`, starting from `image` (cold- or
-    /// warm-started, before the first scan); `every_ns` the period of
-    /// saves in PLC time (`None`: only at the end). `None` when a retain
-    /// range is not inside the image.
+    /// A keeper of `path` (`None`: no RETAIN file) for `program`, starting
+    /// from `image` (cold- or warm-started, before the first scan);
+    /// `every_ns` the period of saves in PLC time (`None`: only at the
+    /// end); `inner` the run's own observer, which sees every scan after
+    /// the keeper.
     pub fn new(
         program: &Program,
         image: &[u8],
-        path: PathBuf,
+        path: Option<PathBuf>,
         every_ns: Option<i64>,
         inner: &'a mut dyn ScanObserver,
-    ) -> Option<Keeper<'a>> {
+    ) -> Keeper<'a> {
         let ranges = program
             .retain
             .iter()
-            .map(|r| Some(usize::try_from(r.start).ok()?..usize::try_from(r.end).ok()?))
-            .collect::<Option<Vec<_>>>()?;
-        Some(Keeper {
+            .filter_map(|r| Some(usize::try_from(r.start).ok()?..usize::try_from(r.end).ok()?))
+            .collect();
+        let snapshot = path.as_ref().and_then(|_| payload(program, image));
+        Keeper {
             path,
             ranges,
             hash: layout_hash(program),
             every_ns: every_ns.filter(|&n| n > 0),
-            snapshot: payload(program, image)?,
+            snapshot,
             saved: None,
             last_save_ns: None,
             inner,
             failures: 0,
             last_error: None,
             saves: 0,
-        })
+        }
     }
 
     /// The retain bytes of the last consistent image.
     pub fn snapshot(&self) -> &[u8] {
-        &self.snapshot
+        self.snapshot.as_deref().unwrap_or_default()
     }
 
     fn take_snapshot(&mut self, image: &[u8]) {
+        let Some(snapshot) = self.snapshot.as_mut() else {
+            return;
+        };
         let mut at = 0;
         for r in &self.ranges {
-            let (Some(src), Some(dst)) = (
-                image.get(r.clone()),
-                self.snapshot.get_mut(at..at + r.len()),
-            ) else {
+            let (Some(src), Some(dst)) = (image.get(r.clone()), snapshot.get_mut(at..at + r.len()))
+            else {
                 continue;
             };
             dst.copy_from_slice(src);
@@ -88,38 +94,51 @@ impl<'a> Keeper<'a> {
         }
     }
 
-    /// Saves the snapshot unless the file already holds it.
-    fn save(&mut self) -> Result<(), String> {
-        if self.saved.as_deref() == Some(self.snapshot.as_slice()) {
-            return Ok(());
+    /// Saves the snapshot unless the file already holds it; `Ok(false)`
+    /// when nothing had to be written.
+    fn save(&mut self) -> Result<bool, String> {
+        let Some(path) = &self.path else {
+            return Ok(false);
+        };
+        let Some(snapshot) = &self.snapshot else {
+            return Err(format!(
+                "{}: a RETAIN range lies outside the memory image",
+                path.display()
+            ));
+        };
+        if self.saved.as_ref() == Some(snapshot) {
+            return Ok(false);
         }
-        let data = encode_payload(self.hash, &self.snapshot)
-            .ok_or_else(|| format!("{}: the RETAIN data is too large", self.path.display()))?;
-        save_bytes(&self.path, &data)?;
-        self.saved = Some(self.snapshot.clone());
-        Ok(())
+        let data = encode_payload(self.hash, snapshot)
+            .ok_or_else(|| format!("{}: the RETAIN data is too large", path.display()))?;
+        save_bytes(path, &data)?;
+        self.saved = Some(snapshot.clone());
+        Ok(true)
     }
 
     /// The final save at the end of the run: the snapshot of the last
-    /// completed scan (or the start image when none completed).
+    /// completed scan (or the start image when none completed). Nothing
+    /// without a RETAIN file.
     pub fn finish(&mut self) -> Result<(), String> {
         self.saved = None;
-        self.save()
+        self.save().map(|_| ())
     }
 }
 
 impl ScanObserver for Keeper<'_> {
     fn after_scan(&mut self, plc_time_ns: i64, image: &[u8]) -> Result<(), String> {
-        self.take_snapshot(image);
-        if let Some(every) = self.every_ns {
-            let last = *self.last_save_ns.get_or_insert(plc_time_ns);
-            if plc_time_ns.saturating_sub(last) >= every {
-                self.last_save_ns = Some(plc_time_ns);
-                match self.save() {
-                    Ok(()) => self.saves += 1,
-                    Err(e) => {
-                        self.failures += 1;
-                        self.last_error = Some(e);
+        if self.path.is_some() {
+            self.take_snapshot(image);
+            if let Some(every) = self.every_ns {
+                let last = *self.last_save_ns.get_or_insert(plc_time_ns);
+                if plc_time_ns.saturating_sub(last) >= every {
+                    self.last_save_ns = Some(plc_time_ns);
+                    match self.save() {
+                        Ok(written) => self.saves += u64::from(written),
+                        Err(e) => {
+                            self.failures += 1;
+                            self.last_error = Some(e);
+                        }
                     }
                 }
             }

@@ -1,0 +1,86 @@
+//! The RETAIN file of `automat run`: where it is and how often it is saved
+//! (command line, else `[retain]` of `automat.toml`), the start-up check
+//! and warm start, and the messages of the saves. The logic is
+//! `automat_runtime::retain`'s; this is the command's wording and exit codes.
+
+use crate::cmd_run::RunArgs;
+use crate::Outcome;
+use automat_runtime::retain::{self, Keeper, Loaded};
+use automat_runtime::Executor;
+use std::path::PathBuf;
+
+/// The RETAIN settings of one run.
+pub(crate) struct RetainCfg {
+    pub path: PathBuf,
+    /// Period of saves while running, in PLC time.
+    pub every_ns: Option<i64>,
+    /// A failed start-up check is a warning, not exit 2.
+    pub optional: bool,
+}
+
+impl RetainCfg {
+    /// From the command line, with the project's `[retain]` as defaults;
+    /// `None` when no RETAIN file is named.
+    pub fn of(args: &RunArgs, project: Option<&automat_project::RetainSpec>) -> Option<RetainCfg> {
+        let path = args
+            .retain
+            .clone()
+            .or_else(|| project.and_then(|p| p.file.clone()))?;
+        Some(RetainCfg {
+            path,
+            every_ns: args
+                .retain_every
+                .or_else(|| project.and_then(|p| p.save_every_ns)),
+            optional: args.retain_optional || project.is_some_and(|p| p.optional),
+        })
+    }
+}
+
+/// Before the first scan: the path is checked (an error, exit 2, unless
+/// optional), then the file loaded into the image unless `--cold`.
+pub(crate) fn start<E: Executor>(
+    engine: &mut E,
+    cfg: Option<&RetainCfg>,
+    cold: bool,
+) -> Result<(), Outcome> {
+    let Some(cfg) = cfg else {
+        return Ok(());
+    };
+    let program = engine.program().clone();
+    if let Err(e) = retain::check_path(&program, &cfg.path) {
+        if !cfg.optional {
+            eprintln!("error: --retain {e}");
+            eprintln!(
+                "note: the PLC did not start; --retain-optional runs it anyway, without keeping RETAIN variables"
+            );
+            return Err(Outcome::BadInput);
+        }
+        eprintln!("warning: --retain {e}; running anyway (--retain-optional)");
+    }
+    if cold {
+        return Ok(());
+    }
+    match retain::load(&program, &cfg.path, engine.image_mut()) {
+        Loaded::Warm | Loaded::NoFile => {}
+        Loaded::Cold(why) => eprintln!("warning: {}: {why}; cold start", cfg.path.display()),
+    }
+    Ok(())
+}
+
+/// After the run: the last consistent snapshot saved, and any failed
+/// periodic save reported. `false` when the final save failed.
+pub(crate) fn finish(k: &mut Keeper) -> bool {
+    if let Some(e) = &k.last_error {
+        eprintln!(
+            "warning: {} periodic RETAIN save(s) failed; the last: {e}",
+            k.failures
+        );
+    }
+    match k.finish() {
+        Ok(()) => true,
+        Err(e) => {
+            eprintln!("error: {e}");
+            false
+        }
+    }
+}
