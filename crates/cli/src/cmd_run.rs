@@ -338,7 +338,7 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
         eprintln!("error: {e}");
         Outcome::BadInput
     })?;
-    let saved = retain_run::finish(&mut keeper);
+    let saved = retain_run::finish(&mut keeper, retain.as_ref());
     drop(keeper);
     finish(args, &engine, trace, &prints, report, saved, &safe)
 }

@@ -285,7 +285,7 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
             eprintln!("error: {e}");
             Outcome::BadInput
         })?;
-        (report, retain_run::finish(&mut keeper))
+        (report, retain_run::finish(&mut keeper, retain.as_ref()))
     };
     if matches!(report.end, RunEnd::Fault(_) | RunEnd::Stopped) {
         // The PLC is in its safe state: the plant is told so, with the

@@ -68,8 +68,9 @@ pub(crate) fn start<E: Executor>(
 }
 
 /// After the run: the last consistent snapshot saved, and any failed
-/// periodic save reported. `false` when the final save failed.
-pub(crate) fn finish(k: &mut Keeper) -> bool {
+/// periodic save reported. `false` when the final save failed (with
+/// `optional`, that is a warning and `true`).
+pub(crate) fn finish(k: &mut Keeper, cfg: Option<&RetainCfg>) -> bool {
     if let Some(e) = &k.last_error {
         eprintln!(
             "warning: {} periodic RETAIN save(s) failed; the last: {e}",
@@ -78,6 +79,10 @@ pub(crate) fn finish(k: &mut Keeper) -> bool {
     }
     match k.finish() {
         Ok(()) => true,
+        Err(e) if cfg.is_some_and(|c| c.optional) => {
+            eprintln!("warning: {e} (--retain-optional)");
+            true
+        }
         Err(e) => {
             eprintln!("error: {e}");
             false

@@ -369,6 +369,8 @@ fn help_documents_every_flag() {
         "--trace",
         "--trace-file",
         "--retain",
+        "--retain-every",
+        "--retain-optional",
         "--cold",
         "--stats",
     ] {
@@ -376,59 +378,169 @@ fn help_documents_every_flag() {
     }
 }
 
+/// Ctrl-C, SIGTERM (how systemd stops a service) and SIGHUP all stop a
+/// real-time run at the end of a scan: exit 0, outputs in the safe state,
+/// RETAIN saved.
 #[test]
-fn ctrl_c_stops_a_real_time_run_cleanly_and_saves_retain() {
-    let f = temp_file("realtime.st", RETAINED);
-    let file = dir().join("realtime.retain");
-    let _ = std::fs::remove_file(&file);
-    let child = Command::new(env!("CARGO_BIN_EXE_automat"))
-        .args([
-            "run",
-            &f,
-            "--cycle-time",
-            "20ms",
-            "--print",
-            "r",
-            "--retain",
-        ])
-        .arg(&file)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("start automat");
-    std::thread::sleep(std::time::Duration::from_millis(400));
-    let killed = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .expect("kill");
-    assert!(killed.success());
-    let out = child.wait_with_output().expect("wait");
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+fn signals_stop_a_real_time_run_cleanly_and_save_retain() {
+    let src = RETAINED.replace(
+        "END_VAR\n    r := r + 1;",
+        "END_VAR\nVAR_OUTPUT\n    lamp : BOOL;\nEND_VAR\n    lamp := TRUE;\n    r := r + 1;",
     );
-    let text = String::from_utf8_lossy(&out.stdout);
-    // Real time: about 20 scans in 400 ms; the exact count depends on the machine.
-    let r: i32 = text
-        .strip_prefix("r = ")
-        .and_then(|s| s.trim().parse().ok())
-        .unwrap_or_else(|| panic!("unexpected output {text:?}"));
-    assert!((2..=30).contains(&r), "{r} scans");
-    // The RETAIN value printed is the one saved.
-    let (_, out, _) = run(
+    let f = temp_file("realtime.st", &src);
+    for signal in ["INT", "TERM", "HUP"] {
+        let file = dir().join(format!("realtime-{signal}.retain"));
+        let _ = std::fs::remove_file(&file);
+        let child = Command::new(env!("CARGO_BIN_EXE_automat"))
+            .args(["run", &f, "--cycle-time", "20ms", "--print", "r"])
+            .args(["--print", "lamp", "--retain"])
+            .arg(&file)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("start automat");
+        std::thread::sleep(std::time::Duration::from_millis(400));
+        let killed = Command::new("kill")
+            .args([&format!("-{signal}"), &child.id().to_string()])
+            .status()
+            .expect("kill");
+        assert!(killed.success());
+        let out = child.wait_with_output().expect("wait");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "SIG{signal}: {stderr}");
+        assert_eq!(
+            stderr,
+            "note: stopped at the end of a scan, in the safe state: 1 output (main.lamp) set to 0/FALSE\n",
+            "SIG{signal}"
+        );
+        let text = String::from_utf8_lossy(&out.stdout);
+        // Real time: about 20 scans in 400 ms; the exact count depends on the machine.
+        let r: i32 = text
+            .strip_prefix("r = ")
+            .and_then(|s| s.strip_suffix("\nlamp = FALSE\n"))
+            .and_then(|s| s.trim().parse().ok())
+            .unwrap_or_else(|| panic!("SIG{signal}: unexpected output {text:?}"));
+        assert!((2..=30).contains(&r), "SIG{signal}: {r} scans");
+        // The RETAIN value printed is the one saved.
+        let (_, out, _) = run(
+            &f,
+            &[
+                "--cycles",
+                "1",
+                "--print",
+                "r",
+                "--retain",
+                &file.display().to_string(),
+            ],
+        );
+        assert_eq!(out, format!("r = {}\n", r + 1), "SIG{signal}");
+    }
+}
+
+/// The issue's example: `b` is incremented, the scan faults, `a := b + 1`
+/// is never reached. The file keeps the end of the last completed scan
+/// (a = 3, b = 2), not the half-done image (b = 3).
+#[test]
+fn a_fault_saves_retain_as_it_was_before_the_faulting_scan() {
+    let src = "PROGRAM main
+VAR RETAIN
+    a : INT;
+    b : INT;
+END_VAR
+VAR
+    zero : INT;
+END_VAR
+    b := b + 1;
+    IF b = 3 THEN
+        zero := b / zero;
+    END_IF;
+    a := b + 1;
+END_PROGRAM
+";
+    let f = temp_file("halfscan.st", src);
+    let file = dir().join("halfscan.retain");
+    let _ = std::fs::remove_file(&file);
+    let file_s = file.display().to_string();
+    let (code, out, err) = run(
+        &f,
+        &[
+            "--cycles", "10", "--retain", &file_s, "--print", "a", "--print", "b",
+        ],
+    );
+    assert_eq!(code, 3, "{err}");
+    // The image at the fault, as printed...
+    assert_eq!(out, "a = 3\nb = 3\n");
+    // ...is not what was saved.
+    let (code, out, err) = run(
+        &f,
+        &[
+            "--cycles", "0", "--retain", &file_s, "--print", "a", "--print", "b",
+        ],
+    );
+    assert_eq!(
+        (code, out.as_str(), err.as_str()),
+        (0, "a = 3\nb = 2\n", "")
+    );
+}
+
+/// The RETAIN path is checked before the first scan: exit 2 and nothing
+/// run, unless --retain-optional (a warning, the run goes on, the save at
+/// the end a warning too).
+#[test]
+fn an_unwritable_retain_path_is_an_error_before_the_first_scan() {
+    let f = temp_file("retain.st", RETAINED);
+    let missing = dir().join("no-such-folder/plc.retain");
+    let missing_s = missing.display().to_string();
+    let (code, out, err) = run(
+        &f,
+        &["--cycles", "3", "--print", "r", "--retain", &missing_s],
+    );
+    assert_eq!((code, out.as_str()), (2, ""), "{err}");
+    assert!(
+        err.starts_with(&format!(
+            "error: --retain {missing_s}: the directory {}: ",
+            missing
+                .parent()
+                .map(|p| p.display().to_string())
+                .unwrap_or_default()
+        )),
+        "{err}"
+    );
+    assert!(
+        err.contains("note: the PLC did not start; --retain-optional"),
+        "{err}"
+    );
+    let (code, out, err) = run(
         &f,
         &[
             "--cycles",
-            "1",
+            "3",
             "--print",
             "r",
             "--retain",
-            &file.display().to_string(),
+            &missing_s,
+            "--retain-optional",
         ],
     );
-    assert_eq!(out, format!("r = {}\n", r + 1));
+    assert_eq!((code, out.as_str()), (0, "r = 3\n"), "{err}");
+    assert!(
+        err.starts_with(&format!("warning: --retain {missing_s}: the directory ")),
+        "{err}"
+    );
+    assert!(
+        err.ends_with(&format!(
+            "warning: {missing_s}: cannot save the RETAIN variables: No such file or directory (os error 2) (--retain-optional)\n"
+        )),
+        "{err}"
+    );
+    // A directory given as the file.
+    let d = dir().display().to_string();
+    let (code, _, err) = run(&f, &["--cycles", "1", "--retain", &d]);
+    assert_eq!(code, 2, "{err}");
+    assert_eq!(
+        err.lines().next(),
+        Some(format!("error: --retain {d}: is a directory").as_str())
+    );
 }
 
 const EVENTS: &str = "TYPE Color : (RED, GREEN, BLUE); END_TYPE
