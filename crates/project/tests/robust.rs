@@ -5,7 +5,8 @@
 //! resolve). It must return a project or E300/E308 diagnostics whose spans
 //! lie inside the text; a project that reads is given its plant
 //! (`new_plant`, parameters applied) and, when its sources compile, its
-//! bindings (`bind`). Nothing may panic, hang or overflow the stack.
+//! bindings (`bind`) and its safe state (`safe::build`, `[safe_state]`
+//! resolved and encoded). Nothing may panic, hang or overflow the stack.
 
 #[path = "../../scenario/tests/support/mutate.rs"]
 mod mutate;
@@ -26,6 +27,16 @@ const WORDS: &[&str] = &[
     "[plant]",
     "[bind]",
     "[plant.params]",
+    "[retain]",
+    "[safe_state]",
+    "save_every =",
+    "optional =",
+    "file =",
+    "M2S =",
+    "\"%QX0.0\" =",
+    "\"Ctrl.n\" =",
+    "\"T#5s\"",
+    "\"'text'\"",
     "[[project]]",
     "name =",
     "description =",
@@ -149,9 +160,24 @@ fn case(path: &Path, text: &str, builds: &mut Builds) -> bool {
         }
     };
     if let (Some(spec), Some(prog)) = (&project.plant, program(builds, &project)) {
-        let (_, diags) = bind(spec, plant.as_ref(), prog);
+        let (bindings, diags) = bind(spec, plant.as_ref(), prog);
         for d in &diags {
             assert!(d.span.end as usize <= text.len(), "{d:?}");
+        }
+        let bound = bindings.as_deref().map(|b| (plant.as_ref(), b));
+        match automat_project::safe::build(&project, prog, bound) {
+            Ok(safe) => {
+                let mut image = prog.initial_image.clone();
+                safe.apply(&mut image);
+                assert_eq!(image.len(), prog.initial_image.len());
+                assert!(!safe.describe().is_empty());
+            }
+            Err(diags) => {
+                for d in &diags {
+                    assert_eq!(d.code, Code::E300, "{d:?}");
+                    assert!(d.span.end as usize <= text.len(), "{d:?}");
+                }
+            }
         }
     }
     true
