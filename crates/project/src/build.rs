@@ -42,7 +42,20 @@ pub fn compile(
         text,
         bad_input: true,
     };
-    let mut map = read_sources(files).map_err(|e| bad(format!("error: {e}\n")))?;
+    let map = read_sources(files).map_err(|e| bad(format!("error: {e}\n")))?;
+    compile_map(map, program, libraries)
+}
+
+/// [`compile`] on sources already in a map (tests, fuzz targets).
+pub fn compile_map(
+    mut map: SourceMap,
+    program: Option<String>,
+    libraries: &[String],
+) -> Result<(Program, String), BuildError> {
+    let bad = |text: String| BuildError {
+        text,
+        bad_input: true,
+    };
     let dialects =
         automat_vendor::parse_names(libraries).map_err(|e| bad(format!("error: {e}\n")))?;
     automat_vendor::add_libraries(&mut map, &dialects);
