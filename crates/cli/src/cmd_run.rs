@@ -327,6 +327,10 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
         retain.as_ref().and_then(|r| r.every_ns),
         inner,
     );
+    if clock == ClockMode::RealTime {
+        // A scan never waits for the disk.
+        keeper = keeper.in_background();
+    }
     let mut env = Env {
         clock: &mut sys,
         inputs: &mut inputs,

@@ -274,6 +274,10 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
             retain.as_ref().and_then(|r| r.every_ns),
             &mut observer,
         );
+        if clock == ClockMode::RealTime {
+            // A scan never waits for the disk.
+            keeper = keeper.in_background();
+        }
         let mut env = Env {
             clock: &mut sys,
             inputs: &mut inputs,

@@ -71,13 +71,14 @@ pub(crate) fn start<E: Executor>(
 /// periodic save reported. `false` when the final save failed (with
 /// `optional`, that is a warning and `true`).
 pub(crate) fn finish(k: &mut Keeper, cfg: Option<&RetainCfg>) -> bool {
+    let last = k.finish();
     if let Some(e) = &k.last_error {
         eprintln!(
             "warning: {} periodic RETAIN save(s) failed; the last: {e}",
             k.failures
         );
     }
-    match k.finish() {
+    match last {
         Ok(()) => true,
         Err(e) if cfg.is_some_and(|c| c.optional) => {
             eprintln!("warning: {e} (--retain-optional)");

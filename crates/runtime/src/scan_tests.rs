@@ -547,3 +547,42 @@ fn a_stop_request_ends_in_the_configured_safe_state() {
         ]
     );
 }
+
+#[test]
+fn a_background_keeper_writes_periodically_and_finishes_with_the_last_scan() {
+    let mut f = Fake::new(program(vec![task(
+        "MAIN",
+        None,
+        0,
+        vec![inst("MAIN", COUNT, 0)],
+    )]));
+    f.program.retain = vec![0..4];
+    let dir = std::env::temp_dir().join(format!("automat-keeper-bg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bg.retain");
+    let program = f.program.clone();
+    let mut inner = ();
+    let mut keeper = crate::retain::Keeper::new(
+        &program,
+        &f.image,
+        Some(path.clone()),
+        Some(10 * MS),
+        &mut inner,
+    )
+    .in_background();
+    let r = run_virtual(&mut f, Limit::Cycles(50), &mut keeper);
+    assert_eq!(r.end, RunEnd::Limit);
+    keeper.finish().unwrap();
+    // 49 periodic saves were handed over; the writer may have merged some.
+    assert!((1..=49).contains(&keeper.saves), "{}", keeper.saves);
+    assert_eq!(keeper.failures, 0);
+    drop(keeper);
+    let mut img = vec![0u8; 64];
+    assert_eq!(
+        crate::retain::load(&program, &path, &mut img),
+        crate::retain::Loaded::Warm
+    );
+    assert_eq!(img[0], 50);
+    assert!(!dir.join("bg.retain.tmp").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -11,13 +11,85 @@
 //! image since. A periodic save that fails does not stop the PLC (its
 //! machine matters more than its memory): the failures are counted and the
 //! last one kept for the caller to report.
+//!
+//! A durable save waits for the disk (two fsyncs, tens of milliseconds on
+//! an ordinary disk), longer than many scan cycles. In real time the
+//! periodic saves therefore go to a writer thread ([`Keeper::in_background`]):
+//! the scan only copies the snapshot and hands it over; a newer snapshot
+//! replaces one the writer has not started yet. The final save is always
+//! done by [`Keeper::finish`] itself, after the writer has finished.
 
 use super::{encode_payload, layout_hash, payload, save_bytes};
 use crate::scan::ScanObserver;
 use crate::stats::Stats;
 use automat_ir::Program;
 use std::ops::Range;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Condvar, Mutex, PoisonError};
+use std::thread::JoinHandle;
+
+/// What the scan and the writer thread share.
+#[derive(Default)]
+struct Slot {
+    /// File bytes waiting to be written.
+    pending: Option<Vec<u8>>,
+    stop: bool,
+    written: u64,
+    failures: u64,
+    last_error: Option<String>,
+}
+
+type Shared = Arc<(Mutex<Slot>, Condvar)>;
+
+struct Writer {
+    shared: Shared,
+    handle: Option<JoinHandle<()>>,
+}
+
+fn lock(shared: &Shared) -> std::sync::MutexGuard<'_, Slot> {
+    shared.0.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// The writer thread: writes whatever is pending until told to stop (and
+/// nothing is pending any more).
+fn write_loop(path: &Path, shared: &Shared) {
+    loop {
+        let data = {
+            let mut slot = lock(shared);
+            loop {
+                if let Some(d) = slot.pending.take() {
+                    break d;
+                }
+                if slot.stop {
+                    return;
+                }
+                slot = shared.1.wait(slot).unwrap_or_else(PoisonError::into_inner);
+            }
+        };
+        let result = save_bytes(path, &data);
+        let mut slot = lock(shared);
+        match result {
+            Ok(()) => slot.written += 1,
+            Err(e) => {
+                slot.failures += 1;
+                slot.last_error = Some(e);
+            }
+        }
+    }
+}
+
+impl Writer {
+    /// Stops the thread once everything pending is written; the counts.
+    fn stop(&mut self) -> (u64, u64, Option<String>) {
+        lock(&self.shared).stop = true;
+        self.shared.1.notify_all();
+        if let Some(h) = self.handle.take() {
+            let _ = h.join();
+        }
+        let mut slot = lock(&self.shared);
+        (slot.written, slot.failures, slot.last_error.take())
+    }
+}
 
 pub struct Keeper<'a> {
     /// `None`: no RETAIN file, the keeper only passes scans on.
@@ -36,8 +108,9 @@ pub struct Keeper<'a> {
     pub failures: u64,
     pub last_error: Option<String>,
     /// Periodic saves that wrote the file (an unchanged snapshot is not
-    /// written again).
+    /// written again); with a writer thread, counted at [`Keeper::finish`].
     pub saves: u64,
+    writer: Option<Writer>,
 }
 
 impl<'a> Keeper<'a> {
@@ -71,6 +144,41 @@ impl<'a> Keeper<'a> {
             failures: 0,
             last_error: None,
             saves: 0,
+            writer: None,
+        }
+    }
+
+    /// Periodic saves are written by a thread of their own, so a scan
+    /// never waits for the disk (for real-time runs). Without a RETAIN
+    /// file, or when no thread can be started, saves stay in the scan.
+    pub fn in_background(mut self) -> Self {
+        let Some(path) = self.path.clone() else {
+            return self;
+        };
+        let shared: Shared = Arc::default();
+        let theirs = Arc::clone(&shared);
+        let spawned = std::thread::Builder::new()
+            .name("retain-writer".into())
+            .spawn(move || write_loop(&path, &theirs));
+        if let Ok(h) = spawned {
+            self.writer = Some(Writer {
+                shared,
+                handle: Some(h),
+            });
+        }
+        self
+    }
+
+    /// Stops the writer thread (after what it still had to write) and
+    /// takes over its counts.
+    fn stop_writer(&mut self) {
+        if let Some(mut w) = self.writer.take() {
+            let (written, failures, last_error) = w.stop();
+            self.saves += written;
+            self.failures += failures;
+            if last_error.is_some() {
+                self.last_error = last_error;
+            }
         }
     }
 
@@ -111,17 +219,36 @@ impl<'a> Keeper<'a> {
         }
         let data = encode_payload(self.hash, snapshot)
             .ok_or_else(|| format!("{}: the RETAIN data is too large", path.display()))?;
-        save_bytes(path, &data)?;
-        self.saved = Some(snapshot.clone());
-        Ok(true)
+        match &self.writer {
+            Some(w) => {
+                lock(&w.shared).pending = Some(data);
+                w.shared.1.notify_one();
+                self.saved = Some(snapshot.clone());
+                // Counted by the writer.
+                Ok(false)
+            }
+            None => {
+                save_bytes(path, &data)?;
+                self.saved = Some(snapshot.clone());
+                Ok(true)
+            }
+        }
     }
 
     /// The final save at the end of the run: the snapshot of the last
-    /// completed scan (or the start image when none completed). Nothing
-    /// without a RETAIN file.
+    /// completed scan (or the start image when none completed), after the
+    /// writer thread is done. Nothing without a RETAIN file. The counts of
+    /// periodic saves are complete afterwards.
     pub fn finish(&mut self) -> Result<(), String> {
+        self.stop_writer();
         self.saved = None;
         self.save().map(|_| ())
+    }
+}
+
+impl Drop for Keeper<'_> {
+    fn drop(&mut self) {
+        self.stop_writer();
     }
 }
 
