@@ -102,7 +102,7 @@ fn mutated_retain_files_never_crash_nor_load_bad_values() {
     assert_eq!(decode(&program, &good, &mut fresh), Ok(()));
     image.clone_from(&fresh);
 
-    let mut rng = Rng(0x5EED_0F_2E7A1);
+    let mut rng = Rng(0x05EE_D0F2_E7A1);
     let (mut accepted, mut value_errors) = (0u64, 0u64);
     let mut seen = std::collections::BTreeSet::new();
     for case in 0..CASES {

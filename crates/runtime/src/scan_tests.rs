@@ -463,7 +463,7 @@ fn the_keeper_saves_every_period_of_plc_time_when_changed() {
         0,
         vec![inst("MAIN", COUNT, 0)],
     )]));
-    f.program.retain = vec![0..4];
+    f.program.retain = vec![std::ops::Range { start: 0, end: 4 }];
     let dir = std::env::temp_dir().join(format!("automat-keeper-p-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("periodic.retain");
@@ -476,7 +476,7 @@ fn the_keeper_saves_every_period_of_plc_time_when_changed() {
             let _ = crate::retain::load(
                 &{
                     let mut p = crate::testutil::program(vec![]);
-                    p.retain = vec![0..4];
+                    p.retain = vec![std::ops::Range { start: 0, end: 4 }];
                     p
                 },
                 &self.1,
@@ -556,7 +556,7 @@ fn a_background_keeper_writes_periodically_and_finishes_with_the_last_scan() {
         0,
         vec![inst("MAIN", COUNT, 0)],
     )]));
-    f.program.retain = vec![0..4];
+    f.program.retain = vec![std::ops::Range { start: 0, end: 4 }];
     let dir = std::env::temp_dir().join(format!("automat-keeper-bg-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("bg.retain");

@@ -209,7 +209,7 @@ fn typed_entry(path: &str, offset: u32, ty: SymbolType) -> SymbolEntry {
 /// WSTRING[1]} at 12..24 (stride 6).
 fn typed() -> Program {
     let mut p = program(vec![task("MAIN", None, 0, vec![])]);
-    p.retain = vec![0..24];
+    p.retain = vec![Range { start: 0, end: 24 }];
     p.symbols = SymbolTable::new(vec![
         typed_entry("Main.flag", 0, SymbolType::Elementary(E::Bool)),
         typed_entry("Main.name", 2, SymbolType::String { cap: 4 }),

@@ -121,7 +121,7 @@ fn check_array(
         .ok_or_else(|| "has more elements than the memory image".to_string())?;
     for k in 0..count {
         let at = u64::from(offset)
-            .checked_add(k.checked_mul(u64::from(stride)).unwrap_or(u64::MAX))
+            .checked_add(k.saturating_mul(u64::from(stride)))
             .and_then(|a| u32::try_from(a).ok())
             .ok_or_else(|| "lies outside the memory image".to_string())?;
         // The element's name is only spelled out when it is at fault.
