@@ -117,7 +117,7 @@ pub struct Program {
     /// The image after a cold start: every variable at its initial value.
     pub initial_image: Vec<u8>,
     pub areas: Areas,
-    /// Byte ranges of RETAIN variables (saved at stop, restored on a warm start).
+    /// Byte ranges of RETAIN variables (saved from end-of-scan snapshots, restored on a warm start).
     pub retain: Vec<Range<u32>>,
     pub symbols: SymbolTable,
     /// The configuration's tasks in declaration order, or one implicit
