@@ -49,13 +49,13 @@ pub(crate) fn start<E: Executor>(
     let program = engine.program().clone();
     if let Err(e) = retain::check_path(&program, &cfg.path) {
         if !cfg.optional {
-            eprintln!("error: --retain {e}");
+            eprintln!("error: RETAIN file {e}");
             eprintln!(
                 "note: the PLC did not start; --retain-optional runs it anyway, without keeping RETAIN variables"
             );
             return Err(Outcome::BadInput);
         }
-        eprintln!("warning: --retain {e}; running anyway (--retain-optional)");
+        eprintln!("warning: RETAIN file {e}; running anyway (--retain-optional)");
     }
     if cold {
         return Ok(());

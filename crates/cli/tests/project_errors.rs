@@ -150,3 +150,71 @@ fn configured_safe_values_reach_the_plant() {
         "{stderr}"
     );
 }
+
+/// `[retain]` of a project: the file (relative to the project folder) is
+/// kept across runs; a folder that does not exist stops the run before the
+/// first scan (exit 2) unless `optional = true`; a bad `[safe_state]`
+/// entry is E300 at its key.
+#[test]
+fn project_retain_table_and_safe_state_errors() {
+    let dir = std::env::temp_dir().join(format!("automat-project-retain-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let src = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fault_safe_state/ctrl.st"),
+    )
+    .expect("fixture");
+    // No fault, and a RETAIN counter.
+    let src = src.replace("    n := 1 / zero;\n", "").replace(
+        "END_VAR\nM2S",
+        "END_VAR\nVAR RETAIN runs : INT; END_VAR\nruns := runs + 1;\nM2S",
+    );
+    std::fs::write(dir.join("ctrl.st"), src).expect("write");
+    let toml = |retain: &str| {
+        std::fs::write(
+            dir.join("automat.toml"),
+            format!("[project]\nname = \"r\"\n[plant]\nmodel = \"crane\"\n{retain}"),
+        )
+        .expect("write toml");
+    };
+    let run = || {
+        let out = Command::new(env!("CARGO_BIN_EXE_automat"))
+            .args([
+                "run",
+                dir.to_str().unwrap_or("."),
+                "--cycles",
+                "3",
+                "--print",
+                "Ctrl.runs",
+            ])
+            .output()
+            .expect("run automat");
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    toml("[retain]\nfile = \"plc.retain\"\nsave_every = \"10ms\"\n");
+    assert_eq!(run(), (Some(0), "Ctrl.runs = 3\n".into(), String::new()));
+    assert_eq!(run(), (Some(0), "Ctrl.runs = 6\n".into(), String::new()));
+    assert!(dir.join("plc.retain").is_file());
+
+    toml("[retain]\nfile = \"missing/plc.retain\"\n");
+    let (code, out, err) = run();
+    assert_eq!((code, out.as_str()), (Some(2), ""), "{err}");
+    assert!(err.starts_with("error: RETAIN file "), "{err}");
+    toml("[retain]\nfile = \"missing/plc.retain\"\noptional = true\n");
+    let (code, out, err) = run();
+    assert_eq!((code, out.as_str()), (Some(0), "Ctrl.runs = 3\n"), "{err}");
+    assert!(err.starts_with("warning: RETAIN file "), "{err}");
+
+    toml("[safe_state]\n\"Ctrl.nope\" = true\n");
+    let (code, _, err) = run();
+    assert_eq!(code, Some(1), "{err}");
+    assert!(
+        err.contains("automat.toml:6:1: error[E300]: [safe_state] `Ctrl.nope`: "),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

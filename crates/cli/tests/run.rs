@@ -508,7 +508,7 @@ fn an_unwritable_retain_path_is_an_error_before_the_first_scan() {
     assert_eq!((code, out.as_str()), (2, ""), "{err}");
     assert!(
         err.starts_with(&format!(
-            "error: --retain {missing_s}: the directory {}: ",
+            "error: RETAIN file {missing_s}: the directory {}: ",
             missing
                 .parent()
                 .map(|p| p.display().to_string())
@@ -534,7 +534,7 @@ fn an_unwritable_retain_path_is_an_error_before_the_first_scan() {
     );
     assert_eq!((code, out.as_str()), (0, "r = 3\n"), "{err}");
     assert!(
-        err.starts_with(&format!("warning: --retain {missing_s}: the directory ")),
+        err.starts_with(&format!("warning: RETAIN file {missing_s}: the directory ")),
         "{err}"
     );
     assert!(
@@ -549,7 +549,7 @@ fn an_unwritable_retain_path_is_an_error_before_the_first_scan() {
     assert_eq!(code, 2, "{err}");
     assert_eq!(
         err.lines().next(),
-        Some(format!("error: --retain {d}: is a directory").as_str())
+        Some(format!("error: RETAIN file {d}: is a directory").as_str())
     );
 }
 
