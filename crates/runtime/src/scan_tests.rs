@@ -586,3 +586,34 @@ fn a_background_keeper_writes_periodically_and_finishes_with_the_last_scan() {
     assert!(!dir.join("bg.retain.tmp").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn an_unchanged_snapshot_is_not_written_again() {
+    // The counter at 0 changes every scan; the RETAIN bytes at 20..24 never.
+    let mut f = Fake::new(program(vec![task(
+        "MAIN",
+        None,
+        0,
+        vec![inst("MAIN", COUNT, 0)],
+    )]));
+    f.program.retain = vec![std::ops::Range { start: 20, end: 24 }];
+    let dir = std::env::temp_dir().join(format!("automat-keeper-same-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("same.retain");
+    let program = f.program.clone();
+    let mut inner = ();
+    let mut keeper = crate::retain::Keeper::new(
+        &program,
+        &f.image,
+        Some(path.clone()),
+        Some(10 * MS),
+        &mut inner,
+    );
+    run_virtual(&mut f, Limit::Cycles(20), &mut keeper);
+    // The first periodic save writes the file; the 18 after it find it current.
+    assert_eq!(keeper.saves, 1);
+    keeper.finish().unwrap();
+    assert!(path.is_file());
+    drop(keeper);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
