@@ -185,6 +185,21 @@ fn int_bytes(v: i128, width: usize) -> Vec<u8> {
         .unwrap_or_default()
 }
 
+/// Whether the zero of `ty` is all zero bytes (so a whole array of it is
+/// one write): not for a subrange or enumeration without 0.
+fn zero_is_all_zero_bytes(ty: &SymbolType) -> bool {
+    match ty {
+        SymbolType::Elementary(_)
+        | SymbolType::String { .. }
+        | SymbolType::WString { .. }
+        | SymbolType::Ref(_) => true,
+        SymbolType::Subrange { lo, hi, .. } => (*lo..=*hi).contains(&0),
+        SymbolType::Enum { values, .. } => values.is_empty() || values.iter().any(|(_, v)| *v == 0),
+        SymbolType::Array { elem, .. } => zero_is_all_zero_bytes(elem),
+        SymbolType::Struct { fields, .. } => fields.iter().all(|f| zero_is_all_zero_bytes(&f.ty)),
+    }
+}
+
 /// The writes that set a value of type `ty` at `offset` to its zero (see
 /// the module comment).
 fn zero(out: &mut Vec<Write>, offset: u32, bit: Option<u8>, ty: &SymbolType) {
@@ -227,8 +242,9 @@ fn zero(out: &mut Vec<Write>, offset: u32, bit: Option<u8>, ty: &SymbolType) {
                 n.checked_mul(e)
             });
             let Some(count) = count else { return };
-            let plain = matches!(**elem, SymbolType::Elementary(_));
-            if plain {
+            // Elements of no size all lie at one place.
+            let count = if *stride == 0 { count.min(1) } else { count };
+            if zero_is_all_zero_bytes(elem) {
                 let bytes = count.saturating_mul(u64::from(*stride));
                 out.push(span(usize::try_from(bytes).unwrap_or(usize::MAX)));
                 return;

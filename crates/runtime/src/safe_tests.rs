@@ -217,3 +217,51 @@ fn extra_places_are_zeroed_once_and_named() {
         "the program has no outputs"
     );
 }
+
+#[test]
+fn arrays_of_structures_zero_each_field_by_its_type() {
+    let cell = |lo: i64| SymbolType::Struct {
+        name: "CELL".into(),
+        fields: vec![
+            Field {
+                name: "on".into(),
+                offset: 0,
+                bit: None,
+                ty: SymbolType::Elementary(E::Bool),
+            },
+            Field {
+                name: "gear".into(),
+                offset: 2,
+                bit: None,
+                ty: SymbolType::Subrange {
+                    base: E::Int,
+                    lo,
+                    hi: 10,
+                },
+            },
+        ],
+    };
+    let array = |lo: i64| SymbolType::Array {
+        elem: Box::new(cell(lo)),
+        dims: vec![(0, 2)],
+        stride: 4,
+    };
+    let mut p = program(vec![task("MAIN", None, 0, vec![])]);
+    p.symbols = SymbolTable::new(vec![
+        entry("MAIN.A", 0, None, array(5), true),
+        entry("MAIN.B", 12, None, array(0), true),
+    ]);
+    let safe = SafeState::of_program(&p);
+    // B is one write of its 12 bytes; A one write per field.
+    assert_eq!(safe.writes.len(), 1 + 6 + 1);
+    let mut img = vec![0xFFu8; 64];
+    safe.apply(&mut img);
+    let mut want = vec![0xFFu8; 64];
+    for k in 0..3 {
+        want[4 * k] = 0;
+        want[4 * k + 2..4 * k + 4].copy_from_slice(&5i16.to_le_bytes());
+    }
+    want[12..24].fill(0);
+    want[44..48].fill(0);
+    assert_eq!(img, want);
+}
