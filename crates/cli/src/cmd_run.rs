@@ -93,8 +93,8 @@ pub struct RunArgs {
     #[arg(long, value_name = "FILE")]
     pub(crate) retain: Option<PathBuf>,
     /// Also save the RETAIN variables every TIME of PLC time while running
-    /// (`10s`), so a power cut loses at most that. (Projects: `[retain]
-    /// save_every`.)
+    /// (when one changed), so a power cut loses at most that; `0s`: only
+    /// when the run stops. Default 10s. (Projects: `[retain] save_every`.)
     #[arg(long, value_name = "TIME", value_parser = timearg::parse_duration)]
     pub(crate) retain_every: Option<i64>,
     /// Run even when the --retain path fails its start-up check (a

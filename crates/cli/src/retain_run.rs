@@ -9,6 +9,10 @@ use automat_runtime::retain::{self, Keeper, Loaded};
 use automat_runtime::Executor;
 use std::path::PathBuf;
 
+/// How often the RETAIN variables are saved while running when neither
+/// `--retain-every` nor `save_every` says: a power cut loses at most 10 s.
+pub(crate) const DEFAULT_EVERY_NS: i64 = 10_000_000_000;
+
 /// The RETAIN settings of one run.
 pub(crate) struct RetainCfg {
     pub path: PathBuf,
@@ -26,11 +30,14 @@ impl RetainCfg {
             .retain
             .clone()
             .or_else(|| project.and_then(|p| p.file.clone()))?;
+        let every = args
+            .retain_every
+            .or_else(|| project.and_then(|p| p.save_every_ns))
+            .unwrap_or(DEFAULT_EVERY_NS);
         Some(RetainCfg {
             path,
-            every_ns: args
-                .retain_every
-                .or_else(|| project.and_then(|p| p.save_every_ns)),
+            // 0: only when the run stops.
+            every_ns: (every > 0).then_some(every),
             optional: args.retain_optional || project.is_some_and(|p| p.optional),
         })
     }
@@ -88,5 +95,55 @@ pub(crate) fn finish(k: &mut Keeper, cfg: Option<&RetainCfg>) -> bool {
             eprintln!("error: {e}");
             false
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        run: RunArgs,
+    }
+
+    fn cfg(args: &[&str], project: Option<&automat_project::RetainSpec>) -> Option<RetainCfg> {
+        let cli = Cli::try_parse_from(std::iter::once("run").chain(args.iter().copied()))
+            .unwrap_or_else(|e| panic!("{e}"));
+        RetainCfg::of(&cli.run, project)
+    }
+
+    #[test]
+    fn the_command_line_wins_over_the_project_and_10s_is_the_default() {
+        assert!(cfg(&["x.st"], None).is_none());
+        let c = cfg(&["x.st", "--retain", "a.retain"], None).unwrap();
+        assert_eq!(
+            (c.path, c.every_ns, c.optional),
+            ("a.retain".into(), Some(10_000_000_000), false)
+        );
+        let c = cfg(
+            &["x.st", "--retain", "a.retain", "--retain-every", "0s"],
+            None,
+        )
+        .unwrap();
+        assert_eq!(c.every_ns, None);
+        let spec = automat_project::RetainSpec {
+            file: Some("p/plc.retain".into()),
+            save_every_ns: Some(2_000_000_000),
+            optional: true,
+        };
+        let c = cfg(&["p"], Some(&spec)).unwrap();
+        assert_eq!(
+            (c.path, c.every_ns, c.optional),
+            ("p/plc.retain".into(), Some(2_000_000_000), true)
+        );
+        let c = cfg(
+            &["p", "--retain", "b.retain", "--retain-every", "500ms"],
+            Some(&spec),
+        )
+        .unwrap();
+        assert_eq!((c.path, c.every_ns), ("b.retain".into(), Some(500_000_000)));
     }
 }

@@ -11,7 +11,8 @@
 //!
 //! `[retain]`: `file` (relative to the project folder; `automat run
 //! --retain` wins), `save_every` (a duration: the RETAIN variables are also
-//! saved that often while running), `optional` (a RETAIN path that fails
+//! saved that often while running; `"0s"`: only at stop; default 10 s),
+//! `optional` (a RETAIN path that fails
 //! the start-up check is a warning, not an error). `[safe_state]`: the safe
 //! value of an output whose safe value is not 0/FALSE, by variable path,
 //! direct address or actuator signal name: `"Ctrl.valve_nc" = true`,
@@ -101,7 +102,8 @@ pub struct PlantSpec {
 pub struct RetainSpec {
     /// The RETAIN file, relative paths already joined to the project folder.
     pub file: Option<PathBuf>,
-    /// `save_every`: the period of saves while running, in PLC time.
+    /// `save_every`: the period of saves while running, in PLC time (0:
+    /// only at stop; `None`: the runner's default).
     pub save_every_ns: Option<i64>,
     /// `optional = true`: a failed start-up check of the path is a warning.
     pub optional: bool,
@@ -326,15 +328,7 @@ fn retain_spec(
     let save_every_ns = raw.save_every.and_then(|every| {
         let span = span_of(file, every.span());
         match automat_runtime::timearg::parse_duration(every.get_ref()) {
-            Ok(ns) if ns > 0 => Some(ns),
-            Ok(_) => {
-                errors.push(Diagnostic::error(
-                    Code::E300,
-                    span,
-                    "save_every must be longer than 0",
-                ));
-                None
-            }
+            Ok(ns) => Some(ns),
             Err(e) => {
                 errors.push(Diagnostic::error(
                     Code::E300,

@@ -39,13 +39,19 @@ fn retain_table_is_read_with_the_project_folder() {
 
 #[test]
 fn retain_errors_point_at_the_value() {
-    let text = "[retain]\nsave_every = \"0s\"\n";
+    let text = "[retain]\nsave_every = \"-1s\"\n";
     let d = parse(text).unwrap_err();
     assert_eq!(d.len(), 1);
     assert_eq!(d[0].code, Code::E300);
-    assert_eq!(d[0].message, "save_every must be longer than 0");
+    assert_eq!(
+        d[0].message,
+        "save_every: `-1s` is negative; a duration must be 0 or more"
+    );
     let at = "[project]\nname = \"t\"\n[retain]\nsave_every = ".len() as u32;
-    assert_eq!((d[0].span.start, d[0].span.end), (at, at + 4));
+    assert_eq!((d[0].span.start, d[0].span.end), (at, at + 5));
+    // 0: only at stop.
+    let p = parse("[retain]\nsave_every = \"0s\"\n").unwrap_or_else(|d| panic!("{d:?}"));
+    assert_eq!(p.retain.save_every_ns, Some(0));
     let d = parse("[retain]\nsave_every = \"soon\"\n").unwrap_err();
     assert!(d[0].message.starts_with("save_every: "), "{}", d[0].message);
     let d = parse("[retain]\nevery = \"1s\"\n").unwrap_err();
