@@ -247,6 +247,10 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
         }
         None => None,
     };
+    // The RETAIN path is checked before anything starts (the live view included).
+    let retain = RetainCfg::of(args, Some(&project.retain));
+    let mut engine = crate::engines::build(program.clone(), args.engine);
+    retain_run::start(&mut engine, retain.as_ref(), args.cold)?;
     let live = (clock == ClockMode::RealTime)
         .then(|| Live::start(&program, Rc::clone(&sim), Arc::clone(&stop), args.speed));
     let mut observer = Observer {
@@ -254,9 +258,6 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
         trace,
         live,
     };
-    let retain = RetainCfg::of(args, Some(&project.retain));
-    let mut engine = crate::engines::build(program.clone(), args.engine);
-    retain_run::start(&mut engine, retain.as_ref(), args.cold)?;
     let mut exec = PlantExec::new(engine, Rc::clone(&sim));
     let cfg = RunConfig {
         cycle_time_ns: args.cycle_time.unwrap_or(project.cycle_time_ns),
@@ -296,9 +297,9 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
         // values the runtime gave the variables its actuators are bound to.
         sim.borrow_mut().safe_state(exec.image());
         // The plant is a physical machine: in virtual time it runs on to the
-        // run's end (--duration, the scenario's duration) with every output
-        // off, so `--print plant.<quantity>` shows where it came to rest. The
-        // PLC's image stays as the fault left it.
+        // run's end (--duration, the scenario's duration) in the safe state,
+        // so `--print plant.<quantity>` shows where it came to rest. The
+        // PLC's image stays as the safe state left it.
         if let (Limit::Duration(end), ClockMode::Virtual) = (&cfg.limit, clock) {
             let mut image = exec.image().to_vec();
             sim.borrow_mut().sync(*end, &mut image);
