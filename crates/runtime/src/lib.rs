@@ -41,6 +41,6 @@ mod testutil;
 
 pub use clock::{ClockMode, Monotonic, SystemClock};
 pub use executor::Executor;
-pub use path::{resolve, Place, PlaceType};
+pub use path::{resolve, resolve_access, Access, Place, PlaceType};
 pub use scan::{run, Limit, RunConfig, RunEnd, RunReport, ScanObserver};
 pub use stats::Stats;
