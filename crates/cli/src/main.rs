@@ -6,6 +6,8 @@
 
 mod cmd_check;
 mod cmd_explain;
+mod cmd_online;
+mod cmd_passwd;
 mod cmd_run;
 mod cmd_test;
 mod engines;
@@ -35,6 +37,7 @@ enum Command {
     Run(cmd_run::RunArgs),
     Test(cmd_test::TestArgs),
     Plot(plot::PlotArgs),
+    Passwd(cmd_passwd::PasswdArgs),
 }
 
 /// Exit status of a command.
@@ -61,6 +64,7 @@ fn main() -> ExitCode {
         Command::Run(args) => cmd_run::run_cmd(&args),
         Command::Test(args) => cmd_test::run(&args),
         Command::Plot(args) => plot::run(&args),
+        Command::Passwd(args) => cmd_passwd::run(&args),
     };
     ExitCode::from(match outcome {
         Outcome::Ok => 0,

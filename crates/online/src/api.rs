@@ -6,6 +6,7 @@
 //! run on the blocking pool, never on the async threads.
 
 use crate::auth::{LoginError, Role};
+use crate::listen::Peer;
 use crate::App;
 use automat_session::{Control, Error, Node, Session, State};
 use axum::body::Bytes;
@@ -14,7 +15,6 @@ use axum::http::{header, HeaderMap, StatusCode};
 use axum::response::{IntoResponse, Response};
 use serde::Deserialize;
 use serde_json::{json, Map, Value};
-use crate::listen::Peer;
 use std::sync::Arc;
 
 /// Paths one `read` may name.
@@ -40,10 +40,15 @@ fn ok() -> Response {
 /// The bearer token of a request: the `Authorization` header, or a
 /// `token` query parameter (browsers cannot set headers on a WebSocket).
 fn bearer<'a>(headers: &'a HeaderMap, query: Option<&'a str>) -> Option<String> {
-    if let Some(v) = headers.get(header::AUTHORIZATION).and_then(|v| v.to_str().ok()) {
+    if let Some(v) = headers
+        .get(header::AUTHORIZATION)
+        .and_then(|v| v.to_str().ok())
+    {
         return v.strip_prefix("Bearer ").map(|t| t.trim().to_string());
     }
-    query_values(query.unwrap_or(""), "token").into_iter().next()
+    query_values(query.unwrap_or(""), "token")
+        .into_iter()
+        .next()
 }
 
 /// The caller's role, refused with 401 or 403 below `need`.
@@ -58,8 +63,10 @@ pub fn authorize(
         .and_then(|t| app.auth.role_of(&t))
         .ok_or_else(|| {
             let mut r = error(StatusCode::UNAUTHORIZED, "missing or invalid credentials");
-            r.headers_mut()
-                .insert(header::WWW_AUTHENTICATE, header::HeaderValue::from_static("Bearer"));
+            r.headers_mut().insert(
+                header::WWW_AUTHENTICATE,
+                header::HeaderValue::from_static("Bearer"),
+            );
             r
         })?;
     if role < need {
@@ -136,7 +143,13 @@ fn us(ns: Option<i64>) -> Value {
 }
 
 pub async fn status(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery) -> Response {
-    if let Err(r) = authorize(&app, &headers, q.as_deref(), Role::Viewer, "read the status") {
+    if let Err(r) = authorize(
+        &app,
+        &headers,
+        q.as_deref(),
+        Role::Viewer,
+        "read the status",
+    ) {
         return r;
     }
     let s = app.session.snapshot();
@@ -161,7 +174,10 @@ pub async fn read(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery) -
     }
     let paths = query_values(q.as_deref().unwrap_or(""), "path");
     if paths.is_empty() {
-        return error(StatusCode::BAD_REQUEST, "name at least one path: ?path=A&path=B");
+        return error(
+            StatusCode::BAD_REQUEST,
+            "name at least one path: ?path=A&path=B",
+        );
     }
     if paths.len() > MAX_PATHS {
         return error(

@@ -164,7 +164,12 @@ impl Auth {
 
     /// Checks a user's password (slow by design: call off the async
     /// threads) and returns a session token and the user's role.
-    pub fn login(&self, from: IpAddr, user: &str, password: &str) -> Result<(String, Role), LoginError> {
+    pub fn login(
+        &self,
+        from: IpAddr,
+        user: &str,
+        password: &str,
+    ) -> Result<(String, Role), LoginError> {
         let now = Instant::now();
         {
             let mut f = self.failures.lock().unwrap_or_else(|p| p.into_inner());
@@ -188,7 +193,11 @@ impl Auth {
                 let token = random_token().map_err(|_| LoginError::Denied)?;
                 let mut s = self.sessions.lock().unwrap_or_else(|p| p.into_inner());
                 if s.len() >= MAX_SESSIONS {
-                    if let Some(oldest) = s.iter().min_by_key(|(_, (_, u))| *u).map(|(t, _)| t.clone()) {
+                    if let Some(oldest) = s
+                        .iter()
+                        .min_by_key(|(_, (_, u))| *u)
+                        .map(|(t, _)| t.clone())
+                    {
                         s.remove(&oldest);
                     }
                 }

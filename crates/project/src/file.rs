@@ -29,7 +29,30 @@ struct RawFile {
     plant: Option<RawPlant>,
     #[serde(default)]
     bind: BTreeMap<Spanned<String>, Spanned<String>>,
+    #[serde(default)]
+    users: BTreeMap<String, RawUser>,
 }
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawUser {
+    role: Spanned<String>,
+    password: String,
+}
+
+/// One `[users.NAME]` table: who may use the network API (`automat run
+/// --listen`), with which role, and the argon2id hash of the password
+/// (made by `automat passwd`; checked by the server, never printed).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UserSpec {
+    pub name: String,
+    /// `viewer`, `operator` or `engineer`.
+    pub role: String,
+    pub password_hash: String,
+}
+
+/// The roles of the network API, least rights first.
+pub const ROLES: [&str; 3] = ["viewer", "operator", "engineer"];
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -91,6 +114,7 @@ pub struct Project {
     /// Vendor dialects (`libraries = ["isagraf"]`, like `automat run --lib`).
     pub libraries: Vec<String>,
     pub plant: Option<PlantSpec>,
+    pub users: Vec<UserSpec>,
 }
 
 impl Project {
@@ -243,6 +267,22 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
             })
             .collect(),
     });
+    let mut users = Vec::new();
+    for (name, u) in raw.users {
+        let role = u.role.get_ref().clone();
+        if !ROLES.contains(&role.as_str()) {
+            errors.push(Diagnostic::error(
+                Code::E300,
+                span_of(file, u.role.span()),
+                format!("user `{name}`: role `{role}` is not viewer, operator or engineer"),
+            ));
+        }
+        users.push(UserSpec {
+            name,
+            role,
+            password_hash: u.password,
+        });
+    }
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -256,6 +296,7 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
         cycle_time_ns,
         libraries: raw.project.libraries,
         plant,
+        users,
     })
 }
 

@@ -22,5 +22,5 @@ pub mod steps;
 
 pub use bind::{bind, Binding};
 pub use exec::PlantExec;
-pub use file::{find_above, load, project_file, PlantSpec, Project, FILE_NAME};
+pub use file::{find_above, load, project_file, PlantSpec, Project, UserSpec, FILE_NAME};
 pub use sim::{Action, Sim};
