@@ -189,6 +189,18 @@ fn walk_path(program: &Program, text: &str, sels: &[Sel]) -> Result<Access, Stri
         Some(Sel::Name(n)) => n.as_str(),
         _ => text,
     };
+    // A program instance is no entry of its own: its variables are.
+    let inside = format!("{first}.");
+    let instance = program
+        .symbols
+        .entries()
+        .iter()
+        .any(|e| e.path.starts_with(&inside));
+    if let (true, Some(Sel::Name(member))) = (instance, sels.get(1)) {
+        return Err(format!(
+            "unknown variable `{text}`: `{first}` has no variable `{member}`"
+        ));
+    }
     Err(format!(
         "unknown variable `{text}`: no program variable or global named `{first}`"
     ))

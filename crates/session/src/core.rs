@@ -172,9 +172,21 @@ impl Core {
                 }
             }
             Command::Subscribe { period_ns, sink } => {
+                // Decimated: on the multiples of the period from the next
+                // scan on, so every client sees the same instants.
+                let next_ns = if period_ns > 0 {
+                    let last = if self.scans == 0 {
+                        self.plc_time_ns.saturating_sub(1)
+                    } else {
+                        self.plc_time_ns
+                    };
+                    last - last.rem_euclid(period_ns) + period_ns
+                } else {
+                    i64::MIN
+                };
                 self.subs.push(Subscription {
                     period_ns,
-                    next_ns: i64::MIN,
+                    next_ns,
                     sink,
                 });
                 Ok(())

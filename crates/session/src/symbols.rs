@@ -36,6 +36,9 @@ pub fn type_name(ty: &SymbolType) -> String {
             let d: Vec<String> = dims.iter().map(|(lo, hi)| format!("{lo}..{hi}")).collect();
             format!("ARRAY[{}] OF {}", d.join(", "), type_name(elem))
         }
+        // The hidden blocks of the SFC desugaring, as the user wrote them.
+        SymbolType::Struct { name, .. } if name.starts_with("__SFC_ACTION") => "ACTION".into(),
+        SymbolType::Struct { name, .. } if name.starts_with("__SFC_") => "STEP".into(),
         SymbolType::Struct { name, .. } | SymbolType::Enum { name, .. } => name.clone(),
         SymbolType::Subrange { base, lo, hi } => format!("{base}({lo}..{hi})"),
         SymbolType::Ref(t) => format!("REF_TO {}", type_name(t)),

@@ -311,6 +311,7 @@ fn symbols_are_a_tree_with_types_and_writability() {
     assert_eq!((dwell.ty.as_str(), dwell.writable), ("TIME", false));
     let gs1 = child(ctrl, "GS1");
     assert!(gs1.children.iter().all(|c| !c.writable));
+    assert_eq!(gs1.ty, "STEP");
     let x = child(&gs1, "X");
     assert_eq!(x.ty, "BOOL");
     assert!(!gs1.children.iter().any(|c| c.name.starts_with("__")));
