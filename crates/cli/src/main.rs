@@ -34,7 +34,7 @@ struct Cli {
 enum Command {
     Check(cmd_check::CheckArgs),
     Explain(cmd_explain::ExplainArgs),
-    Run(cmd_run::RunArgs),
+    Run(Box<cmd_run::RunArgs>),
     Test(cmd_test::TestArgs),
     Plot(plot::PlotArgs),
     Passwd(cmd_passwd::PasswdArgs),

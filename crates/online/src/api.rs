@@ -24,6 +24,33 @@ pub fn error(status: StatusCode, message: impl Into<String>) -> Response {
     (status, axum::Json(json!({ "error": message.into() }))).into_response()
 }
 
+/// A refused request: its status and message (`{"error": message}`).
+pub struct Refusal {
+    pub status: StatusCode,
+    pub message: String,
+}
+
+impl IntoResponse for Refusal {
+    fn into_response(self) -> Response {
+        let unauthorized = self.status == StatusCode::UNAUTHORIZED;
+        let mut r = error(self.status, self.message);
+        if unauthorized {
+            r.headers_mut().insert(
+                header::WWW_AUTHENTICATE,
+                header::HeaderValue::from_static("Bearer"),
+            );
+        }
+        r
+    }
+}
+
+fn refuse(status: StatusCode, message: impl Into<String>) -> Refusal {
+    Refusal {
+        status,
+        message: message.into(),
+    }
+}
+
 fn session_error(e: &Error) -> Response {
     let status = match e {
         Error::Path(_) | Error::Value(_) => StatusCode::BAD_REQUEST,
@@ -58,19 +85,12 @@ pub fn authorize(
     query: Option<&str>,
     need: Role,
     what: &str,
-) -> Result<Role, Response> {
+) -> Result<Role, Refusal> {
     let role = bearer(headers, query)
         .and_then(|t| app.auth.role_of(&t))
-        .ok_or_else(|| {
-            let mut r = error(StatusCode::UNAUTHORIZED, "missing or invalid credentials");
-            r.headers_mut().insert(
-                header::WWW_AUTHENTICATE,
-                header::HeaderValue::from_static("Bearer"),
-            );
-            r
-        })?;
+        .ok_or_else(|| refuse(StatusCode::UNAUTHORIZED, "missing or invalid credentials"))?;
     if role < need {
-        return Err(error(
+        return Err(refuse(
             StatusCode::FORBIDDEN,
             format!(
                 "the role {} may not {what}; it needs {}",
@@ -121,9 +141,9 @@ pub fn query_values(query: &str, key: &str) -> Vec<String> {
         .collect()
 }
 
-fn parse<T: for<'de> Deserialize<'de>>(body: &Bytes) -> Result<T, Response> {
+fn parse<T: for<'de> Deserialize<'de>>(body: &Bytes) -> Result<T, Refusal> {
     serde_json::from_slice(body)
-        .map_err(|e| error(StatusCode::BAD_REQUEST, format!("malformed request: {e}")))
+        .map_err(|e| refuse(StatusCode::BAD_REQUEST, format!("malformed request: {e}")))
 }
 
 async fn blocking<F>(app: &App, f: F) -> Response
@@ -150,7 +170,7 @@ pub async fn status(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery)
         Role::Viewer,
         "read the status",
     ) {
-        return r;
+        return r.into_response();
     }
     let s = app.session.snapshot();
     let fault = match &s.state {
@@ -170,7 +190,7 @@ pub async fn status(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery)
 
 pub async fn read(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery) -> Response {
     if let Err(r) = authorize(&app, &headers, q.as_deref(), Role::Viewer, "read") {
-        return r;
+        return r.into_response();
     }
     let paths = query_values(q.as_deref().unwrap_or(""), "path");
     if paths.is_empty() {
@@ -202,12 +222,12 @@ struct PathValue {
 }
 
 /// A value given as a JSON string, number or boolean, as its literal text.
-fn literal(v: &Value) -> Result<String, Response> {
+fn literal(v: &Value) -> Result<String, Refusal> {
     match v {
         Value::String(s) => Ok(s.clone()),
         Value::Bool(b) => Ok(if *b { "TRUE" } else { "FALSE" }.to_string()),
         Value::Number(n) => Ok(n.to_string()),
-        _ => Err(error(
+        _ => Err(refuse(
             StatusCode::BAD_REQUEST,
             "`value` must be a string (an IEC literal such as \"TRUE\" or \"T#3s\"), a number or a boolean",
         )),
@@ -216,30 +236,30 @@ fn literal(v: &Value) -> Result<String, Response> {
 
 pub async fn write(Ax(app): Ax<App>, headers: HeaderMap, body: Bytes) -> Response {
     if let Err(r) = authorize(&app, &headers, None, Role::Operator, "write") {
-        return r;
+        return r.into_response();
     }
     let req: PathValue = match parse(&body) {
         Ok(r) => r,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     let value = match literal(&req.value) {
         Ok(v) => v,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     blocking(&app, move |s| s.write(&req.path, &value)).await
 }
 
 pub async fn force(Ax(app): Ax<App>, headers: HeaderMap, body: Bytes) -> Response {
     if let Err(r) = authorize(&app, &headers, None, Role::Operator, "force") {
-        return r;
+        return r.into_response();
     }
     let req: PathValue = match parse(&body) {
         Ok(r) => r,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     let value = match literal(&req.value) {
         Ok(v) => v,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     blocking(&app, move |s| s.force(&req.path, &value)).await
 }
@@ -254,11 +274,11 @@ struct Unforce {
 
 pub async fn unforce(Ax(app): Ax<App>, headers: HeaderMap, body: Bytes) -> Response {
     if let Err(r) = authorize(&app, &headers, None, Role::Operator, "release forces") {
-        return r;
+        return r.into_response();
     }
     let req: Unforce = match parse(&body) {
         Ok(r) => r,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     match (req.path, req.all) {
         (None, true) => blocking(&app, |s| s.unforce_all()).await,
@@ -272,7 +292,7 @@ pub async fn unforce(Ax(app): Ax<App>, headers: HeaderMap, body: Bytes) -> Respo
 
 pub async fn forces(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery) -> Response {
     if let Err(r) = authorize(&app, &headers, q.as_deref(), Role::Viewer, "list forces") {
-        return r;
+        return r.into_response();
     }
     let map: Map<String, Value> = app
         .session
@@ -301,7 +321,7 @@ fn node_json(n: &Node) -> Value {
 
 pub async fn symbols(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery) -> Response {
     if let Err(r) = authorize(&app, &headers, q.as_deref(), Role::Viewer, "browse symbols") {
-        return r;
+        return r.into_response();
     }
     let prefix = query_values(q.as_deref().unwrap_or(""), "prefix")
         .into_iter()
@@ -325,11 +345,11 @@ struct ControlReq {
 
 pub async fn control(Ax(app): Ax<App>, headers: HeaderMap, body: Bytes) -> Response {
     if let Err(r) = authorize(&app, &headers, None, Role::Engineer, "control the run") {
-        return r;
+        return r.into_response();
     }
     let req: ControlReq = match parse(&body) {
         Ok(r) => r,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     let c = match req.command.as_str() {
         "start" => Control::Start,
@@ -363,7 +383,7 @@ pub async fn login(
 ) -> Response {
     let req: LoginReq = match parse(&body) {
         Ok(r) => r,
-        Err(r) => return r,
+        Err(r) => return r.into_response(),
     };
     let auth = Arc::clone(&app.auth);
     let ip = peer.ip();

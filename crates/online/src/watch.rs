@@ -43,7 +43,7 @@ pub async fn watch(
     RawQuery(q): RawQuery,
 ) -> Response {
     if let Err(r) = authorize(&app, &headers, q.as_deref(), Role::Viewer, "watch") {
-        return r;
+        return axum::response::IntoResponse::into_response(r);
     }
     let Ok(slot) = Arc::clone(&app.watchers).try_acquire_owned() else {
         return error(
