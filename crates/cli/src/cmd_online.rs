@@ -1,13 +1,15 @@
-//! `automat run PATH... --listen [ADDR:]PORT`: the PLC as a session
-//! (`automat-session`) served by the network API (`automat-online`) until
-//! Ctrl-C. Source files run alone; a project folder runs with its plant
-//! and its `[users]`.
+//! The online run: `automat run PATH...` in real time (until Ctrl-C, with
+//! the live view) or with `--listen [ADDR:]PORT` (served by the network
+//! API, `automat-online`): the PLC as a session (`automat-session`), which
+//! the live view's console and the server both drive. Source files run
+//! alone; a project folder runs with its plant and its `[users]`.
 //!
-//! Options that do not apply are refused, never ignored: `--cycles`,
-//! `--duration`, `--scenario` and `--trace` (the run is driven online).
+//! Options that do not apply are refused, never ignored: with `--listen`,
+//! `--cycles`, `--duration`, `--scenario` and `--trace` (the run is driven
+//! online). `--speed` is honoured for source files too.
 
 use crate::cmd_run::RunArgs;
-use crate::live::ScaledClock;
+use crate::live::{Console, Live, ScaledClock};
 use crate::Outcome;
 use automat_base::{render, SourceMap};
 use automat_ir::Program;
@@ -15,12 +17,42 @@ use automat_online::{Options, Role, User};
 use automat_project::{bind, build, Sim};
 use automat_runtime::retain::{self, Loaded};
 use automat_runtime::ClockMode;
+use automat_runtime::ScanObserver;
 use automat_session::{Config, Parts, Session, State};
 use std::cell::RefCell;
+use std::io::IsTerminal;
 use std::path::Path;
 use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
+
+/// Whether `automat run` goes online: with `--listen`, or a real-time run
+/// (no `--cycles`, `--duration`, `--scenario`, `--virtual-clock`) without
+/// `--trace`.
+pub fn wanted(args: &RunArgs) -> bool {
+    args.listen.is_some()
+        || (args.cycles.is_none()
+            && args.duration.is_none()
+            && args.scenario.is_none()
+            && !args.virtual_clock
+            && args.trace.is_empty())
+}
+
+/// The live view as the session's observer (on the scan thread).
+struct View {
+    live: Live,
+    sim: Option<Rc<RefCell<Sim>>>,
+}
+
+impl ScanObserver for View {
+    fn after_scan(&mut self, now: i64, image: &[u8]) -> Result<(), String> {
+        self.live.after_scan(now, image, self.sim.as_ref());
+        Ok(())
+    }
+    fn stats(&mut self, stats: &automat_runtime::stats::Stats) {
+        self.live.stats(stats);
+    }
+}
 
 fn bad(msg: impl std::fmt::Display) -> Outcome {
     eprintln!("error: {msg}");
@@ -39,11 +71,6 @@ fn load(args: &RunArgs) -> Result<LoadedRun, Outcome> {
         if let Some(toml) = automat_project::project_file(p) {
             return load_project(args, &toml);
         }
-    }
-    if args.speed != 1.0 {
-        return Err(bad(
-            "--speed applies to project folders (a PLC and its plant)",
-        ));
     }
     Ok(LoadedRun {
         program: crate::cmd_run::compile(args)?,
@@ -110,16 +137,13 @@ fn users(project: Option<&automat_project::Project>) -> Vec<User> {
 }
 
 pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
-    let Some(listen) = &args.listen else {
-        return Err(Outcome::BadInput);
-    };
     for (given, name) in [
         (args.cycles.is_some(), "--cycles"),
         (args.duration.is_some(), "--duration"),
         (args.scenario.is_some(), "--scenario"),
         (!args.trace.is_empty(), "--trace"),
     ] {
-        if given {
+        if given && args.listen.is_some() {
             return Err(bad(format!(
                 "{name} does not apply with --listen: the run goes on until Ctrl-C (with --virtual-clock, scans run on `step` commands)"
             )));
@@ -128,8 +152,12 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
     if !(args.speed.is_finite() && args.speed > 0.0) {
         return Err(bad("--speed must be a number greater than 0"));
     }
-    let addr =
-        automat_online::listen::parse_addr(listen).map_err(|e| bad(format!("--listen: {e}")))?;
+    let addr = match &args.listen {
+        Some(l) => {
+            Some(automat_online::listen::parse_addr(l).map_err(|e| bad(format!("--listen: {e}")))?)
+        }
+        None => None,
+    };
     let loaded = load(args)?;
     if loaded.cycle_ns <= 0 {
         return Err(bad("--cycle-time must be longer than 0"));
@@ -139,11 +167,26 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         Some(path) => Some(automat_online::token_file(path).map_err(bad)?),
         None => None,
     };
-    let mut opts = Options::new(addr);
-    opts.token = token;
-    opts.users = users(loaded.project.as_ref());
-    opts.insecure = args.insecure;
-    opts.tls = args.tls_cert.clone().zip(args.tls_key.clone());
+    let opts = addr.map(|addr| {
+        let mut opts = Options::new(addr);
+        opts.token = token;
+        opts.users = users(loaded.project.as_ref());
+        opts.insecure = args.insecure;
+        opts.tls = args.tls_cert.clone().zip(args.tls_key.clone());
+        opts
+    });
+    // The live view, unless a server runs without a terminal (a service);
+    // for source files only on a terminal, so scripts reading `--print`
+    // get their values alone (a project's view prints a line a second, as
+    // it always did).
+    let view = (args.listen.is_none() || std::io::stdin().is_terminal())
+        && (loaded.project.is_some() || std::io::stdout().is_terminal());
+    let console = Arc::new(Mutex::new(Console {
+        watch: crate::live::default_watch(&loaded.program),
+        ..Console::default()
+    }));
+    let (to_view, view_commands) = std::sync::mpsc::channel::<String>();
+    let has_plant = loaded.project.as_ref().is_some_and(|p| p.plant.is_some());
 
     let stop = Arc::new(AtomicBool::new(false));
     let flag = Arc::clone(&stop);
@@ -167,6 +210,9 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
     let engine_kind = args.engine;
     let retain_file = (!args.cold).then(|| args.retain.clone()).flatten();
     let project = loaded.project;
+    let view_console = Arc::clone(&console);
+    let view_stop = Arc::clone(&stop);
+    let speed = args.speed;
     let build = Box::new(move || -> Result<Parts, String> {
         let mut engine = crate::engines::build(for_build.clone(), engine_kind);
         if let Some(path) = &retain_file {
@@ -191,29 +237,48 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             }
             None => None,
         };
+        let observer: Option<Box<dyn ScanObserver>> = view.then(|| {
+            let live = Live::new(&for_build, view_commands, view_console, view_stop, speed);
+            Box::new(View {
+                live,
+                sim: sim.clone(),
+            }) as Box<dyn ScanObserver>
+        });
         Ok(Parts {
             exec: Box::new(engine),
             sim,
-            observer: None,
+            observer,
         })
     });
     let session = Arc::new(Session::start(Arc::clone(&program), config, build).map_err(bad)?);
-    let server = match automat_online::start(Arc::clone(&session), opts) {
-        Ok(s) => s,
-        Err(e) => {
+    let server = match opts.map(|o| automat_online::start(Arc::clone(&session), o)) {
+        None => None,
+        Some(Ok(s)) => Some(s),
+        Some(Err(e)) => {
             let _ = session.shutdown();
             return Err(bad(e));
         }
     };
-    let ws = if server.scheme == "https" {
-        "wss"
-    } else {
-        "ws"
-    };
-    eprintln!(
-        "automat: PLC API on {}://{}/api/v1/ (WebSocket {ws}://{}/api/v1/watch); Ctrl-C stops",
-        server.scheme, server.addr, server.addr
-    );
+    if let Some(server) = &server {
+        let ws = if server.scheme == "https" {
+            "wss"
+        } else {
+            "ws"
+        };
+        eprintln!(
+            "automat: PLC API on {}://{}/api/v1/ (WebSocket {ws}://{}/api/v1/watch); Ctrl-C stops",
+            server.scheme, server.addr, server.addr
+        );
+    }
+    if view {
+        crate::live::console(
+            Arc::clone(&session),
+            console,
+            to_view,
+            Arc::clone(&stop),
+            has_plant,
+        );
+    }
     let end = session.join().map_err(bad)?;
     drop(server);
     let mut outcome = Outcome::Ok;

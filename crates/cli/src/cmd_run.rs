@@ -250,8 +250,14 @@ pub fn run_cmd(args: &RunArgs) -> Outcome {
 }
 
 fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
-    if args.listen.is_some() {
+    if crate::cmd_online::wanted(args) {
         return crate::cmd_online::run(args);
+    }
+    if args.speed != 1.0 {
+        eprintln!(
+            "error: --speed applies to real-time runs; this one is on the virtual clock (--cycles, --duration, --scenario or --virtual-clock)"
+        );
+        return Err(Outcome::BadInput);
     }
     if let [p] = args.paths.as_slice() {
         if let Some(toml) = automat_project::project_file(p) {

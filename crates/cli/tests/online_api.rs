@@ -190,3 +190,60 @@ fn listen_refuses_what_does_not_apply_and_plain_http_off_loopback() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--listen needs credentials"));
 }
+
+#[test]
+fn the_live_view_forces_and_watches_through_the_session() {
+    let mut child = Command::new(bin())
+        .arg("run")
+        .arg(root().join("examples/crane"))
+        .args(["--speed", "10"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("automat run");
+    let mut stdin = child.stdin.take().expect("stdin");
+    for line in [
+        "force Ctrl.l1 FALSE",
+        "watch Ctrl.startEdge.Q",
+        "force Ctrl.GS1.x TRUE",
+        "write Ctrl.M1S 2",
+        "help",
+    ] {
+        writeln!(stdin, "{line}").expect("command");
+        // One redraw a second shows each answer.
+        std::thread::sleep(Duration::from_millis(1100));
+    }
+    writeln!(stdin, "quit").expect("quit");
+    let out = child.wait_with_output().expect("wait");
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("ok: force Ctrl.l1 FALSE"), "{text}");
+    assert!(text.contains("FORCED: Ctrl.l1=FALSE"), "{text}");
+    // The plant's own sensor stays on; the program sees the forced value.
+    assert!(text.contains("in:    Pornire=0 l1=1 "), "{text}");
+    assert!(text.contains("Ctrl.l1=FALSE"), "{text}");
+    assert!(text.contains("Ctrl.startEdge.Q=FALSE"), "{text}");
+    assert!(
+        text.contains("`force Ctrl.GS1.x TRUE`: `Ctrl.GS1.x` is a step flag"),
+        "{text}"
+    );
+    assert!(
+        text.contains("`write Ctrl.M1S 2`: `Ctrl.M1S`: expected a value of type BOOL"),
+        "{text}"
+    );
+    assert!(text.contains("program: watch PATH"), "{text}");
+}
+
+#[test]
+fn speed_is_refused_where_it_does_not_apply() {
+    let out = Command::new(bin())
+        .arg("run")
+        .arg(root().join("examples/crane"))
+        .args(["--speed", "2", "--duration", "1s"])
+        .output()
+        .expect("automat");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr)
+        .contains("error: --speed applies to real-time runs; this one is on the virtual clock"));
+}
