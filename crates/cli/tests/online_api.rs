@@ -65,13 +65,14 @@ struct Plc {
     token: String,
 }
 
-/// Starts `automat run DIR --listen 0 …` and waits for its address.
+/// Starts `automat run DIR --token-file … EXTRA` (EXTRA has `--listen`)
+/// and waits for its address.
 fn start(dir: &Path, extra: &[&str]) -> Plc {
     let token_file = dir.join("token");
     let mut child = Command::new(bin())
         .arg("run")
         .arg(dir)
-        .args(["--listen", "0", "--token-file"])
+        .arg("--token-file")
         .arg(&token_file)
         .args(extra)
         .stdin(Stdio::null())
@@ -92,7 +93,7 @@ fn start(dir: &Path, extra: &[&str]) -> Plc {
             .recv_timeout(Duration::from_secs(120))
             .expect("automat run --listen did not announce its address");
         if let Some(rest) = line.split("PLC API on ").nth(1) {
-            let addr = rest.split("/api/v1/").next().expect("address");
+            let addr = rest.split("/api/v1/ ").next().expect("address");
             break addr.to_string();
         }
     };
@@ -104,9 +105,14 @@ fn start(dir: &Path, extra: &[&str]) -> Plc {
 }
 
 fn client(mode: &str, plc: &Plc) {
+    client_with(mode, plc, &[]);
+}
+
+fn client_with(mode: &str, plc: &Plc, extra: &[&str]) {
     let out = Command::new("python3")
         .arg(root().join("crates/cli/tests/online/api_client.py"))
         .args([mode, &plc.url, &plc.token])
+        .args(extra)
         .output()
         .expect("python3");
     let text = String::from_utf8_lossy(&out.stdout);
@@ -138,7 +144,7 @@ fn interrupt(mut plc: Plc) {
 fn the_api_contract_from_a_python_client_on_the_virtual_clock() {
     python_ready();
     let dir = project("exact");
-    let plc = start(&dir, &["--virtual-clock"]);
+    let plc = start(&dir, &["--listen", "0", "--virtual-clock"]);
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
@@ -156,7 +162,7 @@ fn the_api_contract_from_a_python_client_on_the_virtual_clock() {
 fn hostile_clients_do_not_stop_the_scan_in_real_time() {
     python_ready();
     let dir = project("robust");
-    let plc = start(&dir, &[]);
+    let plc = start(&dir, &["--listen", "0"]);
     client("robust", &plc);
     interrupt(plc);
 }
@@ -246,4 +252,53 @@ fn speed_is_refused_where_it_does_not_apply() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr)
         .contains("error: --speed applies to real-time runs; this one is on the virtual clock"));
+}
+
+#[test]
+fn https_and_wss_with_a_certificate() {
+    python_ready();
+    let dir = project("tls");
+    let (cert, key) = (dir.join("cert.pem"), dir.join("key.pem"));
+    let made = Command::new("openssl")
+        .args([
+            "req",
+            "-x509",
+            "-newkey",
+            "ec",
+            "-pkeyopt",
+            "ec_paramgen_curve:prime256v1",
+        ])
+        .args(["-nodes", "-days", "2", "-subj", "/CN=localhost"])
+        .args([
+            "-addext",
+            "subjectAltName=IP:127.0.0.1,DNS:localhost",
+            "-keyout",
+        ])
+        .arg(&key)
+        .arg("-out")
+        .arg(&cert)
+        .output()
+        .expect("openssl (installed by .ci/run) makes the test certificate");
+    assert!(
+        made.status.success(),
+        "{}",
+        String::from_utf8_lossy(&made.stderr)
+    );
+    let cert_s = cert.display().to_string();
+    let key_s = key.display().to_string();
+    let plc = start(
+        &dir,
+        &[
+            "--virtual-clock",
+            "--listen",
+            "127.0.0.1:0",
+            "--tls-cert",
+            &cert_s,
+            "--tls-key",
+            &key_s,
+        ],
+    );
+    assert!(plc.url.starts_with("https://127.0.0.1:"), "{}", plc.url);
+    client_with("tls", &plc, &[&cert_s]);
+    interrupt(plc);
 }

@@ -6,6 +6,7 @@ against a real-time run for the robustness checks.
 
     api_client.py exact URL TOKEN       # the contract, with exact values
     api_client.py robust URL TOKEN      # hostile clients while the PLC runs
+    api_client.py tls URL TOKEN CERT    # HTTPS and WSS with the server's certificate
 
 Users of the exact run (made by the harness with `automat passwd`):
 viewer `ada` / `viewer-pass`, operator `otto` / `operator-pass`.
@@ -274,10 +275,31 @@ def robust(base, token):
     check("and the server still answers", eng.get("/api/v1/read", path="Ctrl.l1").status_code == 200)
 
 
+def tls(base, token, cert):
+    import ssl
+    h = {"Authorization": f"Bearer {token}"}
+    r = requests.get(base + "/api/v1/status", headers=h, verify=cert, timeout=30)
+    check("HTTPS: status", r.status_code == 200 and r.json()["state"] == "stopped", r.text)
+    r = requests.get(base + "/api/v1/status", verify=cert, timeout=30)
+    check("HTTPS: still authenticated", r.status_code == 401, r.text)
+    ctx = ssl.create_default_context(cafile=cert)
+    with connect(base.replace("https", "wss") + "/api/v1/watch", additional_headers=h, ssl=ctx) as ws:
+        ws.send(json.dumps({"subscribe": ["Ctrl.l1"]}))
+        m = json.loads(ws.recv(timeout=10))
+        check("WSS: watch", m["values"] == {"Ctrl.l1": "FALSE"}, m)
+    try:
+        requests.get(base.replace("https", "http") + "/api/v1/status", headers=h, timeout=5)
+        check("plain HTTP is not served", False, "answered")
+    except requests.exceptions.RequestException:
+        check("plain HTTP is not served", True)
+
+
 def main():
     mode, base, token = sys.argv[1:4]
     if mode == "exact":
         exact(base, token)
+    elif mode == "tls":
+        tls(base, token, sys.argv[4])
     else:
         robust(base, token)
     print(f"{passed} passed, {failed} failed")
