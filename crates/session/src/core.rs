@@ -19,7 +19,7 @@ use automat_runtime::{run, Executor, Limit, Monotonic, RunConfig, RunEnd, ScanOb
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, TryRecvError};
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -259,8 +259,16 @@ impl Core {
         }
         let mut first = true;
         loop {
-            while let Ok(req) = self.rx.try_recv() {
-                self.handle(req, image, in_scan_loop);
+            loop {
+                match self.rx.try_recv() {
+                    Ok(req) => self.handle(req, image, in_scan_loop),
+                    Err(TryRecvError::Empty) => break,
+                    // Every handle is gone: nobody can stop the PLC any more.
+                    Err(TryRecvError::Disconnected) => {
+                        self.quit = true;
+                        break;
+                    }
+                }
             }
             self.forces.borrow().apply(image);
             self.publish(image);

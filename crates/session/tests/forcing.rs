@@ -323,3 +323,36 @@ fn symbols_are_a_tree_with_types_and_writability() {
     assert_eq!(sub[0].path, "Ctrl.startEdge");
     assert!(s.symbols("Nope").is_err());
 }
+
+#[test]
+fn a_warm_restart_keeps_retain_variables_and_a_cold_one_does_not() {
+    let s = source(
+        "PROGRAM Main
+VAR RETAIN
+    r : INT;
+END_VAR
+VAR
+    n : INT;
+END_VAR
+    r := r + 1;
+    n := n + 1;
+END_PROGRAM
+",
+    );
+    step(&s, 3);
+    s.control(Control::WarmRestart).unwrap();
+    assert_eq!(
+        (get(&s, "r"), get(&s, "n")),
+        ("3".to_string(), "0".to_string())
+    );
+    step(&s, 1);
+    assert_eq!(
+        (get(&s, "r"), get(&s, "n")),
+        ("4".to_string(), "1".to_string())
+    );
+    s.control(Control::ColdRestart).unwrap();
+    assert_eq!(
+        (get(&s, "r"), get(&s, "n")),
+        ("0".to_string(), "0".to_string())
+    );
+}

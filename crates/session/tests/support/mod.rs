@@ -26,11 +26,10 @@ pub fn config() -> Config {
 
 /// A session over one ST source text (no plant).
 pub fn source(text: &str) -> Session {
-    let dir = std::env::temp_dir().join(format!(
-        "automat-session-{}-{:x}",
-        std::process::id(),
-        text.len() * 7919 + text.bytes().map(usize::from).sum::<usize>()
-    ));
+    // One folder per call: tests run in parallel, several on one text.
+    static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("automat-session-{}-{n}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let file = dir.join("main.st");
     std::fs::write(&file, text).expect("write source");
