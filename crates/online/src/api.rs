@@ -303,7 +303,7 @@ pub async fn forces(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery)
     axum::Json(json!({ "forces": map })).into_response()
 }
 
-fn node_json(n: &Node) -> Value {
+fn node_json(n: &Node, session: &Session) -> Value {
     let mut v = json!({
         "name": n.name,
         "path": n.path,
@@ -311,7 +311,13 @@ fn node_json(n: &Node) -> Value {
         "writable": n.writable,
     });
     if !n.children.is_empty() {
-        v["children"] = Value::Array(n.children.iter().map(node_json).collect());
+        v["children"] = Value::Array(n.children.iter().map(|c| node_json(c, session)).collect());
+    } else if n.writable && !session.forces().is_empty() {
+        if let Ok(place) = session.place(&n.path) {
+            if session.is_forced(&place) {
+                v["forced"] = json!(true);
+            }
+        }
     }
     if n.more > 0 {
         v["more"] = json!(n.more);
@@ -329,7 +335,7 @@ pub async fn symbols(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery
         .unwrap_or_default();
     match app.session.symbols(&prefix) {
         Ok(nodes) => axum::Json(json!({
-            "symbols": nodes.iter().map(node_json).collect::<Vec<Value>>()
+            "symbols": nodes.iter().map(|n| node_json(n, &app.session)).collect::<Vec<Value>>()
         }))
         .into_response(),
         Err(e) => session_error(&e),

@@ -1,6 +1,7 @@
 //! `GET /api/v1/watch`: a WebSocket whose client sends
 //! `{"subscribe": [paths], "period_ms": n}` (again to change it) and gets
-//! `{"plc_time_ns", "scans", "values": {...}}` after every scan
+//! `{"plc_time_ns", "scans", "values": {...}}` (and `"forced": [paths]`
+//! when some watched paths are forced) after every scan
 //! (`period_ms` 0 or absent) or at most once per period of PLC time, and
 //! once at once with the current values.
 //!
@@ -59,12 +60,25 @@ pub async fn watch(
         })
 }
 
-fn values(places: &[(String, Place)], snap: &Snapshot) -> String {
+/// One update; `forced` lists the watched paths that are forced (only
+/// when some are).
+fn values(app: &App, places: &[(String, Place)], snap: &Snapshot) -> String {
     let map: Map<String, Value> = places
         .iter()
         .map(|(n, p)| (n.clone(), json!(show::format(&snap.image, p))))
         .collect();
-    json!({ "plc_time_ns": snap.plc_time_ns, "scans": snap.scans, "values": map }).to_string()
+    let mut msg = json!({ "plc_time_ns": snap.plc_time_ns, "scans": snap.scans, "values": map });
+    if !snap.forces.is_empty() {
+        let forced: Vec<&str> = places
+            .iter()
+            .filter(|(_, p)| app.session.is_forced(p))
+            .map(|(n, _)| n.as_str())
+            .collect();
+        if !forced.is_empty() {
+            msg["forced"] = json!(forced);
+        }
+    }
+    msg.to_string()
 }
 
 async fn next(rx: &mut Option<mpsc::Receiver<Arc<Snapshot>>>) -> Option<Arc<Snapshot>> {
@@ -96,7 +110,7 @@ async fn serve(mut socket: WebSocket, app: App) {
                     Ok((p, r)) => {
                         places = p;
                         rx = Some(r);
-                        let now = values(&places, &app.session.snapshot());
+                        let now = values(&app, &places, &app.session.snapshot());
                         if socket.send(Message::Text(now.into())).await.is_err() {
                             return;
                         }
@@ -115,7 +129,7 @@ async fn serve(mut socket: WebSocket, app: App) {
                     let _ = socket.send(Message::Close(None)).await;
                     return;
                 };
-                if socket.send(Message::Text(values(&places, &snap).into())).await.is_err() {
+                if socket.send(Message::Text(values(&app, &places, &snap).into())).await.is_err() {
                     return;
                 }
             }

@@ -373,6 +373,15 @@ impl Session {
         self.snapshot().forces.as_ref().clone()
     }
 
+    /// Whether the location of `place` is forced (whatever name the force
+    /// was given), for views that mark forced values.
+    pub fn is_forced(&self, place: &Place) -> bool {
+        self.snapshot().forces.iter().any(|(path, _)| {
+            resolve(&self.program, path)
+                .is_ok_and(|f| f.offset == place.offset && f.bit == place.bit)
+        })
+    }
+
     /// Run control; returns once it took effect (`step` once the scans ran).
     pub fn control(&self, c: Control) -> Result<(), Error> {
         self.send(Command::Control(c))

@@ -108,6 +108,8 @@ def exact(base, token):
     eng.step(2)
     check("the program sees the forced l1: no start",
           eng.read("Ctrl.GS1.x", "Ctrl.M2S") == {"Ctrl.GS1.x": "TRUE", "Ctrl.M2S": "FALSE"})
+    kids = {c["name"]: c for c in eng.get("/api/v1/symbols", prefix="Ctrl").json()["symbols"][0]["children"]}
+    check("symbols mark forced values", kids["l1"].get("forced") is True and "forced" not in kids["l2"], kids["l1"])
     r = eng.post("/api/v1/unforce", {"path": "Ctrl.l1"})
     check("unforce l1", r.status_code == 200, r.text)
     eng.step(1)
@@ -286,7 +288,13 @@ def tls(base, token, cert):
     with connect(base.replace("https", "wss") + "/api/v1/watch", additional_headers=h, ssl=ctx) as ws:
         ws.send(json.dumps({"subscribe": ["Ctrl.l1"]}))
         m = json.loads(ws.recv(timeout=10))
-        check("WSS: watch", m["values"] == {"Ctrl.l1": "FALSE"}, m)
+        check("WSS: watch", m["values"] == {"Ctrl.l1": "FALSE"} and "forced" not in m, m)
+        r = requests.post(base + "/api/v1/force", headers=h, json={"path": "%IX1.2", "value": 1}, verify=cert,
+                          timeout=30)
+        check("HTTPS: force", r.status_code == 200, r.text)
+        ws.send(json.dumps({"subscribe": ["Ctrl.l1", "Ctrl.l2"]}))
+        m = json.loads(ws.recv(timeout=10))
+        check("WSS: forced values are marked", m["values"]["Ctrl.l1"] == "TRUE" and m["forced"] == ["Ctrl.l1"], m)
     try:
         requests.get(base.replace("https", "http") + "/api/v1/status", headers=h, timeout=5)
         check("plain HTTP is not served", False, "answered")
