@@ -126,6 +126,25 @@ pub struct RunArgs {
     /// bounds the run when neither --cycles nor --duration is given.
     #[arg(long, value_name = "FILE.scn")]
     pub(crate) scenario: Option<PathBuf>,
+    /// Serve the network API (HTTP/JSON and a WebSocket, see
+    /// docs/online-api.md) while the PLC runs, on 127.0.0.1:PORT or
+    /// ADDR:PORT; runs until Ctrl-C. With --virtual-clock the PLC starts
+    /// stopped and runs by `step` commands.
+    #[arg(long, value_name = "[ADDR:]PORT")]
+    pub(crate) listen: Option<String>,
+    /// --listen: the token (engineer rights) is the content of FILE; a
+    /// missing FILE is created with a random token, readable only by you.
+    #[arg(long, value_name = "FILE", requires = "listen")]
+    pub(crate) token_file: Option<PathBuf>,
+    /// --listen: serve HTTPS/WSS with this certificate (PEM).
+    #[arg(long, value_name = "FILE", requires_all = ["listen", "tls_key"])]
+    pub(crate) tls_cert: Option<PathBuf>,
+    /// --listen: the private key (PEM) of --tls-cert.
+    #[arg(long, value_name = "FILE", requires_all = ["listen", "tls_cert"])]
+    pub(crate) tls_key: Option<PathBuf>,
+    /// --listen: allow plain HTTP on a non-loopback address.
+    #[arg(long, requires = "listen")]
+    pub(crate) insecure: bool,
 }
 
 /// Splits `--trace` values on the commas that are not inside `[...]`, so
@@ -153,7 +172,7 @@ pub(crate) fn split_trace(values: &[String]) -> Vec<String> {
 }
 
 /// Parses, checks and lowers the project; diagnostics are printed to stderr.
-fn compile(args: &RunArgs) -> Result<Program, Outcome> {
+pub(crate) fn compile(args: &RunArgs) -> Result<Program, Outcome> {
     let dialects = automat_vendor::parse_names(&args.libs).map_err(|e| {
         eprintln!("error: --lib: {e}");
         Outcome::BadInput
@@ -259,6 +278,15 @@ pub fn run_cmd(args: &RunArgs) -> Outcome {
 }
 
 fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
+    if crate::cmd_online::wanted(args) {
+        return crate::cmd_online::run(args);
+    }
+    if args.speed != 1.0 {
+        eprintln!(
+            "error: --speed applies to real-time runs; this one is on the virtual clock (--cycles, --duration, --scenario or --virtual-clock)"
+        );
+        return Err(Outcome::BadInput);
+    }
     if let [p] = args.paths.as_slice() {
         if let Some(toml) = automat_project::project_file(p) {
             return crate::project_run::run(args, &toml);

@@ -1,10 +1,13 @@
-//! The real-time view of `automat run PROJECT`: a status of the inputs,
-//! outputs and plant quantities (redrawn on a terminal, one line a second
-//! otherwise), and commands typed on standard input, applied at the next
-//! scan: `press Pornire [for 200ms]`, `release Pornire`, `set l2 1` (on a
-//! sensor or actuator: stuck at that value), `stuck l2 = TRUE`,
-//! `unstick l2`, `noise Temp 20`, `plant CMD key=value`, `quit`.
-
+//! The real-time view of `automat run`: a status of the program's watched
+//! variables and forces, and of a project's inputs, outputs and plant
+//! quantities (redrawn on a terminal, one line a second otherwise), and
+//! commands typed on standard input. Program commands go to the PLC
+//! session at once (`watch PATH`, `unwatch PATH|all`, `write PATH VALUE`,
+//! `force PATH VALUE`, `unforce PATH|all`, `help`); plant commands are
+//! applied at the next scan: `press Pornire [for 200ms]`, `release
+//! Pornire`, `set l2 1` (on a sensor or actuator: stuck at that value),
+//! `stuck l2 = TRUE`, `unstick l2`, `noise Temp 20`, `plant CMD key=value`;
+//! `quit` stops.
 use automat_ir::Program;
 use automat_plant::{Dir, Value};
 use automat_project::steps::{charts, Chart};
@@ -17,8 +20,8 @@ use std::cell::RefCell;
 use std::io::{BufRead, IsTerminal, Write};
 use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{channel, Receiver};
-use std::sync::Arc;
+use std::sync::mpsc::{channel, Receiver, Sender};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// The system clock run `speed` times faster: PLC time and plant time
@@ -47,8 +50,21 @@ impl Monotonic for ScaledClock {
     }
 }
 
+/// What the console thread (typing) and the view (drawing, on the scan
+/// thread) share: locked only to change or copy it, never across a scan.
+#[derive(Default)]
+pub struct Console {
+    /// Watched paths with their places, in the order given.
+    pub watch: Vec<(String, automat_runtime::Place)>,
+    /// The session's forces after the last force command.
+    pub forces: Vec<(String, String)>,
+    /// Answers to commands not shown yet.
+    pub messages: Vec<String>,
+}
+
 pub struct Live {
     program: Program,
+    console: Arc<Mutex<Console>>,
     /// The program's SFC charts, whose active steps the view lists.
     charts: Vec<Chart>,
     commands: Receiver<String>,
@@ -64,8 +80,134 @@ pub struct Live {
 }
 
 const HELP: &str = "commands: press NAME [for TIME] | release NAME | set NAME VALUE | stuck NAME VALUE | unstick NAME | plant CMD key=value | quit";
+const PROGRAM_HELP: &str = "program: watch PATH | unwatch PATH|all | write PATH VALUE | force PATH VALUE | unforce PATH|all | help | quit";
+
+/// Variables of the program shown before any `watch`: the elementary
+/// variables of the program instances and the globals, at most this many.
+const DEFAULT_WATCH: usize = 12;
+
+/// The program's own elementary variables, for the view's default list.
+pub fn default_watch(program: &Program) -> Vec<(String, automat_runtime::Place)> {
+    let mut out = Vec::new();
+    for root in automat_session::symbols::tree(program, "").unwrap_or_default() {
+        let level = if root.children.is_empty() {
+            vec![root]
+        } else {
+            root.children
+        };
+        for n in level {
+            if out.len() >= DEFAULT_WATCH {
+                return out;
+            }
+            if n.children.is_empty() && n.more == 0 {
+                if let Ok(p) = automat_runtime::resolve(program, &n.path) {
+                    out.push((n.path, p));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Reads standard input: program commands go to the session at once,
+/// the others to the view (plant commands, applied at the next scan).
+pub fn console(
+    session: Arc<automat_session::Session>,
+    shared: Arc<Mutex<Console>>,
+    to_view: Sender<String>,
+    stop: Arc<AtomicBool>,
+    plant: bool,
+) {
+    eprintln!("{PROGRAM_HELP}");
+    if plant {
+        eprintln!("{HELP}");
+    }
+    std::thread::spawn(move || {
+        let stdin = std::io::stdin();
+        for line in stdin.lock().lines() {
+            let Ok(line) = line else { break };
+            let t = line.trim();
+            let (word, rest) = t.split_once(char::is_whitespace).unwrap_or((t, ""));
+            let rest = rest.trim();
+            let answer = match word.to_ascii_lowercase().as_str() {
+                "" => continue,
+                "quit" | "q" => {
+                    stop.store(true, Ordering::Relaxed);
+                    break;
+                }
+                "help" | "?" => {
+                    if plant {
+                        format!("{PROGRAM_HELP} || {HELP}")
+                    } else {
+                        PROGRAM_HELP.to_string()
+                    }
+                }
+                "watch" => match session.place(rest) {
+                    Ok(p) => {
+                        let mut c = shared.lock().unwrap_or_else(|p| p.into_inner());
+                        c.watch.retain(|(n, _)| !n.eq_ignore_ascii_case(rest));
+                        c.watch.push((rest.to_string(), p));
+                        format!("ok: watching {rest}")
+                    }
+                    Err(e) => format!("`{t}`: {e}"),
+                },
+                "unwatch" => {
+                    let mut c = shared.lock().unwrap_or_else(|p| p.into_inner());
+                    let before = c.watch.len();
+                    if rest.eq_ignore_ascii_case("all") {
+                        c.watch.clear();
+                    } else {
+                        c.watch.retain(|(n, _)| !n.eq_ignore_ascii_case(rest));
+                    }
+                    if c.watch.len() == before {
+                        format!("`{t}`: {rest} is not watched")
+                    } else {
+                        format!("ok: {t}")
+                    }
+                }
+                "write" | "force" => {
+                    let (path, value) = rest.split_once(char::is_whitespace).unwrap_or((rest, ""));
+                    let done = if word.eq_ignore_ascii_case("write") {
+                        session.write(path, value.trim())
+                    } else {
+                        session.force(path, value.trim())
+                    };
+                    match done {
+                        Ok(()) => format!("ok: {t}"),
+                        Err(e) => format!("`{t}`: {e}"),
+                    }
+                }
+                "unforce" => {
+                    let done = if rest.eq_ignore_ascii_case("all") {
+                        session.unforce_all()
+                    } else {
+                        session.unforce(rest)
+                    };
+                    match done {
+                        Ok(()) => format!("ok: {t}"),
+                        Err(e) => format!("`{t}`: {e}"),
+                    }
+                }
+                _ if plant => {
+                    if to_view.send(line).is_err() {
+                        break;
+                    }
+                    continue;
+                }
+                _ => format!("`{t}`: unknown command; {PROGRAM_HELP}"),
+            };
+            let mut c = shared.lock().unwrap_or_else(|p| p.into_inner());
+            c.forces = session.forces();
+            if c.messages.len() < 64 {
+                c.messages.push(answer);
+            }
+        }
+    });
+}
 
 impl Live {
+    /// The view of a run without a session: every typed line is a plant
+    /// command.
     pub fn start(
         program: &Program,
         _sim: Rc<RefCell<Sim>>,
@@ -83,10 +225,24 @@ impl Live {
             }
         });
         eprintln!("{HELP}");
+        let console = Arc::new(Mutex::new(Console::default()));
+        Live::new(program, rx, console, stop, speed)
+    }
+
+    /// The view of a session's run: `commands` are the plant commands the
+    /// [`console`] passes on.
+    pub fn new(
+        program: &Program,
+        commands: Receiver<String>,
+        console: Arc<Mutex<Console>>,
+        stop: Arc<AtomicBool>,
+        speed: f64,
+    ) -> Live {
         Live {
+            console,
             program: program.clone(),
             charts: charts(program),
-            commands: rx,
+            commands,
             stop,
             terminal: std::io::stdout().is_terminal(),
             last_draw: None,
@@ -150,6 +306,43 @@ impl Live {
         }
     }
 
+    /// The watched variables and the forces.
+    fn program_lines(&self, image: &[u8]) -> Vec<String> {
+        let c = self.console.lock().unwrap_or_else(|p| p.into_inner());
+        let mut out = Vec::new();
+        if !c.watch.is_empty() {
+            let each: Vec<String> = c
+                .watch
+                .iter()
+                .map(|(n, p)| format!("{n}={}", automat_runtime::value::format(image, p)))
+                .collect();
+            out.push(format!("  vars:  {}", each.join(" ")));
+        }
+        if !c.forces.is_empty() {
+            let each: Vec<String> = c.forces.iter().map(|(n, v)| format!("{n}={v}")).collect();
+            out.push(format!("  FORCED: {}", each.join(" ")));
+        }
+        out
+    }
+
+    fn plc_status(&self, now: i64, image: &[u8]) -> Vec<String> {
+        let head = format!(
+            "PLC {} | scans {}{}{}",
+            automat_iec::format::format_duration(now, false),
+            self.scans,
+            cycle_text(self.cycle),
+            if self.speed == 1.0 {
+                String::new()
+            } else {
+                format!(" | speed {}x", self.speed)
+            }
+        );
+        std::iter::once(head)
+            .chain(self.program_lines(image))
+            .chain(steps_line(&self.charts, image))
+            .collect()
+    }
+
     fn status(&self, now: i64, image: &[u8], sim: &Sim) -> Vec<String> {
         let plant = sim.plant();
         let sig = |dirs: &[Dir]| {
@@ -191,6 +384,7 @@ impl Live {
             format!("  plant: {q}"),
         ]
         .into_iter()
+        .chain(self.program_lines(image))
         .chain(steps_line(&self.charts, image))
         .collect()
     }
@@ -202,10 +396,13 @@ impl Live {
         }
     }
 
-    pub fn after_scan(&mut self, now: i64, image: &[u8], sim: &Rc<RefCell<Sim>>) {
+    pub fn after_scan(&mut self, now: i64, image: &[u8], sim: Option<&Rc<RefCell<Sim>>>) {
         self.scans += 1;
         while let Ok(line) = self.commands.try_recv() {
-            self.command(&line, now, sim);
+            match sim {
+                Some(sim) => self.command(&line, now, sim),
+                None => self.message = format!("`{line}`: this run has no plant"),
+            }
         }
         let every = if self.terminal {
             Duration::from_millis(200)
@@ -216,13 +413,28 @@ impl Live {
             return;
         }
         self.last_draw = Some(Instant::now());
-        let lines = self.status(now, image, &sim.borrow());
+        let lines = match sim {
+            Some(sim) => self.status(now, image, &sim.borrow()),
+            None => self.plc_status(now, image),
+        };
+        {
+            // The console's answer, shown once.
+            let mut c = self.console.lock().unwrap_or_else(|p| p.into_inner());
+            if !c.messages.is_empty() {
+                let mut all = std::mem::take(&mut c.messages);
+                if !self.message.is_empty() {
+                    all.insert(0, std::mem::take(&mut self.message));
+                }
+                self.message = all.join(if self.terminal { " | " } else { "\n  " });
+            }
+        }
+        let help = if sim.is_some() { HELP } else { PROGRAM_HELP };
         let mut out = std::io::stdout().lock();
         if self.terminal {
             // Clear and redraw in place; the status stays at the top.
             let _ = write!(
                 out,
-                "\x1b[2J\x1b[H{}\n  {}\n  {HELP}\n> ",
+                "\x1b[2J\x1b[H{}\n  {}\n  {help}\n> ",
                 lines.join("\n"),
                 self.message
             );

@@ -6,6 +6,8 @@
 
 mod cmd_check;
 mod cmd_explain;
+mod cmd_online;
+mod cmd_passwd;
 mod cmd_run;
 mod cmd_test;
 mod engines;
@@ -33,9 +35,10 @@ struct Cli {
 enum Command {
     Check(cmd_check::CheckArgs),
     Explain(cmd_explain::ExplainArgs),
-    Run(cmd_run::RunArgs),
+    Run(Box<cmd_run::RunArgs>),
     Test(cmd_test::TestArgs),
     Plot(plot::PlotArgs),
+    Passwd(cmd_passwd::PasswdArgs),
 }
 
 /// Exit status of a command.
@@ -62,6 +65,7 @@ fn main() -> ExitCode {
         Command::Run(args) => cmd_run::run_cmd(&args),
         Command::Test(args) => cmd_test::run(&args),
         Command::Plot(args) => plot::run(&args),
+        Command::Passwd(args) => cmd_passwd::run(&args),
     };
     ExitCode::from(match outcome {
         Outcome::Ok => 0,

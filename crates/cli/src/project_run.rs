@@ -105,7 +105,7 @@ impl ScanObserver for Observer {
             out.write_all(line.as_bytes()).map_err(|e| e.to_string())?;
         }
         if let Some(live) = &mut self.live {
-            live.after_scan(now, image, &self.sim);
+            live.after_scan(now, image, Some(&self.sim));
         }
         Ok(())
     }

@@ -43,6 +43,8 @@ struct RawFile {
     retain: Option<RawRetain>,
     #[serde(default)]
     safe_state: BTreeMap<Spanned<String>, toml::Value>,
+    #[serde(default)]
+    users: BTreeMap<String, RawUser>,
 }
 
 #[derive(Deserialize)]
@@ -53,6 +55,27 @@ struct RawRetain {
     #[serde(default)]
     optional: bool,
 }
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawUser {
+    role: Spanned<String>,
+    password: String,
+}
+
+/// One `[users.NAME]` table: who may use the network API (`automat run
+/// --listen`), with which role, and the argon2id hash of the password
+/// (made by `automat passwd`; checked by the server, never printed).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UserSpec {
+    pub name: String,
+    /// `viewer`, `operator` or `engineer`.
+    pub role: String,
+    pub password_hash: String,
+}
+
+/// The roles of the network API, least rights first.
+pub const ROLES: [&str; 3] = ["viewer", "operator", "engineer"];
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -140,6 +163,7 @@ pub struct Project {
     pub retain: RetainSpec,
     /// `[safe_state]`, in the file's key order.
     pub safe_state: Vec<SafeSpec>,
+    pub users: Vec<UserSpec>,
 }
 
 impl Project {
@@ -298,6 +322,22 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
         let span = span_of(file, k.span());
         safe_values(k.get_ref().clone(), &v, span, &mut safe_state, &mut errors);
     }
+    let mut users = Vec::new();
+    for (name, u) in raw.users {
+        let role = u.role.get_ref().clone();
+        if !ROLES.contains(&role.as_str()) {
+            errors.push(Diagnostic::error(
+                Code::E300,
+                span_of(file, u.role.span()),
+                format!("user `{name}`: role `{role}` is not viewer, operator or engineer"),
+            ));
+        }
+        users.push(UserSpec {
+            name,
+            role,
+            password_hash: u.password,
+        });
+    }
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -313,6 +353,7 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
         plant,
         retain,
         safe_state,
+        users,
     })
 }
 

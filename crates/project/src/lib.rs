@@ -26,6 +26,6 @@ pub mod steps;
 pub use bind::{bind, Binding};
 pub use exec::PlantExec;
 pub use file::{
-    find_above, load, project_file, PlantSpec, Project, RetainSpec, SafeSpec, FILE_NAME,
+    find_above, load, project_file, PlantSpec, Project, RetainSpec, SafeSpec, UserSpec, FILE_NAME,
 };
 pub use sim::{Action, Sim};

@@ -204,6 +204,12 @@ impl Sim {
         }
     }
 
+    /// The PLC runs again after a fault (an online restart): actuators
+    /// follow the image again.
+    pub fn resume(&mut self) {
+        self.halted = false;
+    }
+
     /// Whether [`Sim::safe_state`] was applied.
     pub fn halted(&self) -> bool {
         self.halted

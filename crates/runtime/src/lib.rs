@@ -46,7 +46,7 @@ mod testutil;
 
 pub use clock::{ClockMode, Monotonic, SystemClock};
 pub use executor::Executor;
-pub use path::{resolve, Place, PlaceType};
+pub use path::{resolve, resolve_access, Access, Place, PlaceType};
 pub use safe::SafeState;
 pub use scan::{run, run_safe, Limit, RunConfig, RunEnd, RunReport, ScanObserver};
 pub use stats::Stats;

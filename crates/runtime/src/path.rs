@@ -68,15 +68,40 @@ enum Sel {
     Index(Vec<i64>),
 }
 
+/// A resolved path with what decides whether a user may change it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Access {
+    pub place: Place,
+    /// The declared variable is a CONSTANT.
+    pub constant: bool,
+    /// The path goes through compiler-generated state: a name starting
+    /// with `__`, or an instance of a hidden block (`__SFC_STEP`, the SFC
+    /// step flags and times; `__SFC_ACTION`); the hidden type's name.
+    pub generated: Option<String>,
+    /// The bounds of a subrange type.
+    pub bounds: Option<(i64, i64)>,
+}
+
 /// Resolves `text` in `program` (see the module rules).
 pub fn resolve(program: &Program, text: &str) -> Result<Place, String> {
+    resolve_access(program, text).map(|a| a.place)
+}
+
+/// [`resolve`], with what online writing and forcing check.
+pub fn resolve_access(program: &Program, text: &str) -> Result<Access, String> {
     let t = text.trim();
-    let place = if let Some(addr) = t.strip_prefix('%') {
-        direct(program, t, addr)?
+    let access = if let Some(addr) = t.strip_prefix('%') {
+        Access {
+            place: direct(program, t, addr)?,
+            constant: false,
+            generated: None,
+            bounds: None,
+        }
     } else {
         let sels = parse(t)?;
         walk_path(program, t, &sels)?
     };
+    let place = &access.place;
     let end = u64::from(place.offset) + u64::from(place.ty.size());
     if end > u64::from(program.image_size) {
         return Err(format!(
@@ -84,7 +109,7 @@ pub fn resolve(program: &Program, text: &str) -> Result<Place, String> {
             program.image_size
         ));
     }
-    Ok(place)
+    Ok(access)
 }
 
 fn parse(text: &str) -> Result<Vec<Sel>, String> {
@@ -149,7 +174,7 @@ fn scopes(program: &Program) -> Vec<Option<String>> {
     }
 }
 
-fn walk_path(program: &Program, text: &str, sels: &[Sel]) -> Result<Place, String> {
+fn walk_path(program: &Program, text: &str, sels: &[Sel]) -> Result<Access, String> {
     for scope in scopes(program) {
         let mut all: Vec<Sel> = scope.iter().map(|s| Sel::Name(s.clone())).collect();
         let scoped = all.len();
@@ -166,6 +191,18 @@ fn walk_path(program: &Program, text: &str, sels: &[Sel]) -> Result<Place, Strin
         Some(Sel::Name(n)) => n.as_str(),
         _ => text,
     };
+    // A program instance is no entry of its own: its variables are.
+    let inside = format!("{first}.");
+    let instance = program
+        .symbols
+        .entries()
+        .iter()
+        .any(|e| e.path.starts_with(&inside));
+    if let (true, Some(Sel::Name(member))) = (instance, sels.get(1)) {
+        return Err(format!(
+            "unknown variable `{text}`: `{first}` has no variable `{member}`"
+        ));
+    }
     Err(format!(
         "unknown variable `{text}`: no program variable or global named `{first}`"
     ))
@@ -203,10 +240,15 @@ fn root(program: &Program, sels: &[Sel], scoped: usize) -> Option<(usize, Walker
         return Some((
             k,
             Walker {
+                generated: names
+                    .get(..k)
+                    .and_then(|n| n.iter().find(|n| n.starts_with("__")))
+                    .map(|n| n.to_string()),
                 shown: if shown.is_empty() { joined } else { shown },
                 offset: e.offset,
                 bit: e.bit,
                 ty: e.ty.clone(),
+                constant: e.constant,
             },
         ));
     }
@@ -219,6 +261,9 @@ struct Walker {
     offset: u32,
     bit: Option<u8>,
     ty: SymbolType,
+    constant: bool,
+    /// The first compiler-generated name or hidden type on the path.
+    generated: Option<String>,
 }
 
 fn type_name(ty: &SymbolType) -> String {
@@ -242,6 +287,9 @@ impl Walker {
                     .iter()
                     .find(|f| f.name.eq_ignore_ascii_case(n))
                     .ok_or_else(|| format!("`{shown}` ({name}) has no member `{n}`"))?;
+                if self.generated.is_none() && (name.starts_with("__") || n.starts_with("__")) {
+                    self.generated = Some(name.clone());
+                }
                 self.offset = self
                     .offset
                     .checked_add(f.offset)
@@ -297,7 +345,11 @@ impl Walker {
         Ok(())
     }
 
-    fn finish(self) -> Result<Place, String> {
+    fn finish(self) -> Result<Access, String> {
+        let bounds = match self.ty {
+            SymbolType::Subrange { lo, hi, .. } => Some((lo, hi)),
+            _ => None,
+        };
         let ty = match self.ty {
             SymbolType::Elementary(e) => PlaceType::Elementary(e),
             SymbolType::Subrange { base, .. } => PlaceType::Elementary(base),
@@ -327,10 +379,15 @@ impl Walker {
                 ))
             }
         };
-        Ok(Place {
-            offset: self.offset,
-            bit: self.bit,
-            ty,
+        Ok(Access {
+            place: Place {
+                offset: self.offset,
+                bit: self.bit,
+                ty,
+            },
+            constant: self.constant,
+            generated: self.generated,
+            bounds,
         })
     }
 }

@@ -52,6 +52,13 @@ pub trait ScanObserver {
     /// The cycle statistics after each scan that ran a task (scan time
     /// measured on the run's clock, overruns counted): for live views.
     fn stats(&mut self, _stats: &Stats) {}
+    /// Between two scans (after each scan that ran a task, its statistics
+    /// recorded): the image may be changed (one-shot writes of an online
+    /// session) and the observer may wait here (a stopped session).
+    /// `false` ends the run with [`RunEnd::Stopped`].
+    fn between_scans(&mut self, _image: &mut [u8]) -> bool {
+        true
+    }
 }
 
 impl ScanObserver for () {
@@ -229,6 +236,9 @@ impl<E: Executor> Loop<'_, '_, E> {
             }
             if !self.due.is_empty() {
                 self.env.observer.stats(&self.stats);
+                if !self.env.observer.between_scans(self.exec.image_mut()) {
+                    return RunEnd::Stopped;
+                }
             }
         }
     }

@@ -1,0 +1,548 @@
+//! The scan thread: the runtime's scan loop with the session as its
+//! observer. Between scans ([`ScanObserver::between_scans`]) it applies
+//! the commands that came (never waiting for one while running), stores
+//! the forces, publishes the snapshot, feeds the subscriptions due and
+//! answers the commands; while stopped it waits there, its waiting time
+//! left out of the run's clock so PLC time and the plant stand still.
+
+use crate::force::{Boxed, ForceTable, Forcing, Shifted};
+use crate::{
+    Command, Config, Control, CycleStats, Error, Final, Parts, Request, Shared, Sink, Snapshot,
+    State,
+};
+use automat_ir::Program;
+use automat_project::PlantExec;
+use automat_runtime::io::NoIo;
+use automat_runtime::scan::Env;
+use automat_runtime::stats::Stats;
+use automat_runtime::{run, Executor, Limit, Monotonic, RunConfig, RunEnd, ScanObserver};
+use std::cell::{Cell, RefCell};
+use std::rc::Rc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, TryRecvError};
+use std::sync::Arc;
+use std::time::Duration;
+
+/// How often a stopped session looks at the outside stop flag.
+const POLL: Duration = Duration::from_millis(50);
+
+/// The run's clock with the time spent stopped left out.
+struct PausedClock {
+    inner: Box<dyn Monotonic + Send>,
+    /// Time spent stopped so far.
+    paused_ns: i64,
+    since: Option<i64>,
+}
+
+#[derive(Clone)]
+struct ClockHandle(Rc<RefCell<PausedClock>>);
+
+impl ClockHandle {
+    fn pause(&self) {
+        let mut c = self.0.borrow_mut();
+        if c.since.is_none() {
+            let now = c.inner.now_ns();
+            c.since = Some(now);
+        }
+    }
+    fn resume(&self) {
+        let mut c = self.0.borrow_mut();
+        if let Some(since) = c.since.take() {
+            let now = c.inner.now_ns();
+            c.paused_ns = c.paused_ns.saturating_add(now.saturating_sub(since));
+        }
+    }
+}
+
+impl Monotonic for ClockHandle {
+    fn now_ns(&mut self) -> i64 {
+        let mut c = self.0.borrow_mut();
+        let paused = c.paused_ns;
+        c.inner.now_ns().saturating_sub(paused)
+    }
+    fn sleep_until(&mut self, deadline_ns: i64) {
+        let mut c = self.0.borrow_mut();
+        let paused = c.paused_ns;
+        c.inner.sleep_until(deadline_ns.saturating_add(paused));
+    }
+}
+
+/// Where a command's answer goes.
+type Reply = Sender<Result<(), Error>>;
+
+struct Subscription {
+    period_ns: i64,
+    next_ns: i64,
+    sink: Sink,
+}
+
+/// The session's side of the scan thread.
+struct Core {
+    program: Arc<Program>,
+    rx: Receiver<Request>,
+    shared: Arc<Shared>,
+    forces: Rc<RefCell<ForceTable>>,
+    forces_shown: Arc<Vec<(String, String)>>,
+    offset: Rc<Cell<i64>>,
+    clock: ClockHandle,
+    outside_stop: Arc<AtomicBool>,
+    extra: Option<Box<dyn ScanObserver>>,
+    state: State,
+    /// Scans left of a `step`, and who waits for them.
+    steps: Option<(u64, Reply)>,
+    plc_time_ns: i64,
+    scans: u64,
+    stats: CycleStats,
+    subs: Vec<Subscription>,
+    quit: bool,
+    /// A restart asked for while in fault (done outside the scan loop).
+    restart: Option<()>,
+    /// Replies to send once the snapshot shows the commands' effect.
+    answers: Vec<(Reply, Result<(), Error>)>,
+}
+
+impl Core {
+    fn publish(&mut self, image: &[u8]) {
+        let snap = Arc::new(Snapshot {
+            plc_time_ns: self.plc_time_ns,
+            scans: self.scans,
+            state: self.state.clone(),
+            stats: self.stats.clone(),
+            image: image.to_vec(),
+            forces: Arc::clone(&self.forces_shown),
+        });
+        match self.shared.snapshot.lock() {
+            Ok(mut s) => *s = Arc::clone(&snap),
+            Err(p) => *p.into_inner() = Arc::clone(&snap),
+        }
+    }
+
+    fn answer(&mut self) {
+        for (to, answer) in self.answers.drain(..) {
+            let _ = to.send(answer);
+        }
+    }
+
+    fn feed(&mut self) {
+        let snap = match self.shared.snapshot.lock() {
+            Ok(s) => Arc::clone(&s),
+            Err(p) => Arc::clone(&p.into_inner()),
+        };
+        let now = self.plc_time_ns;
+        self.subs.retain_mut(|s| {
+            if now < s.next_ns {
+                return true;
+            }
+            s.next_ns = if s.period_ns > 0 {
+                // The next multiple of the period: decimation never drifts.
+                now - now.rem_euclid(s.period_ns) + s.period_ns
+            } else {
+                now
+            };
+            (s.sink)(&snap)
+        });
+    }
+
+    /// Applies one command to the image; the answer goes out with the next
+    /// snapshot (or, for a `step`, when its scans have run).
+    fn handle(&mut self, req: Request, image: &mut [u8], in_scan_loop: bool) {
+        let Request { command, reply } = req;
+        let answer = match command {
+            Command::Write(stored) => {
+                stored.apply(image);
+                Ok(())
+            }
+            Command::Force(f) => {
+                f.stored.apply(image);
+                self.forces.borrow_mut().set(f);
+                self.forces_shown = Arc::new(self.forces.borrow().list());
+                Ok(())
+            }
+            Command::Unforce(None) => {
+                self.forces.borrow_mut().clear();
+                self.forces_shown = Arc::new(Vec::new());
+                Ok(())
+            }
+            Command::Unforce(Some(at)) => {
+                if self.forces.borrow_mut().release(&at) {
+                    self.forces_shown = Arc::new(self.forces.borrow().list());
+                    Ok(())
+                } else {
+                    Err(Error::Refused("this location is not forced".into()))
+                }
+            }
+            Command::Subscribe { period_ns, sink } => {
+                // Decimated: on the multiples of the period from the next
+                // scan on, so every client sees the same instants.
+                let next_ns = if period_ns > 0 {
+                    let last = if self.scans == 0 {
+                        self.plc_time_ns.saturating_sub(1)
+                    } else {
+                        self.plc_time_ns
+                    };
+                    last - last.rem_euclid(period_ns) + period_ns
+                } else {
+                    i64::MIN
+                };
+                self.subs.push(Subscription {
+                    period_ns,
+                    next_ns,
+                    sink,
+                });
+                Ok(())
+            }
+            Command::Quit => {
+                self.quit = true;
+                Ok(())
+            }
+            Command::Control(c) => return self.control(c, reply, image, in_scan_loop),
+        };
+        self.answers.push((reply, answer));
+    }
+
+    fn control(&mut self, c: Control, reply: Reply, image: &mut [u8], in_scan_loop: bool) {
+        let fault = matches!(self.state, State::Fault { .. });
+        let answer = match c {
+            Control::Start | Control::Step(_) if fault => Err(Error::Refused(
+                "the PLC is in fault: cold_restart or warm_restart starts it again".into(),
+            )),
+            Control::Start => {
+                self.steps = None;
+                self.state = State::Running;
+                Ok(())
+            }
+            Control::Stop => {
+                self.steps = None;
+                self.state = State::Stopped;
+                Ok(())
+            }
+            Control::Step(0) => Ok(()),
+            Control::Step(n) => {
+                self.state = State::Running;
+                // Answered when the scans have run.
+                if let Some((_, earlier)) = self.steps.replace((n, reply)) {
+                    let _ = earlier.send(Err(Error::Refused(
+                        "a newer step command replaced this one".into(),
+                    )));
+                }
+                return;
+            }
+            Control::ColdRestart | Control::WarmRestart => {
+                restart_image(&self.program, image, c == Control::WarmRestart);
+                self.forces.borrow().apply(image);
+                if !in_scan_loop {
+                    // Out of the scan loop (in fault): it starts again.
+                    self.restart = Some(());
+                }
+                if fault {
+                    self.state = State::Stopped;
+                }
+                Ok(())
+            }
+        };
+        self.answers.push((reply, answer));
+    }
+
+    /// Between scans (or while in fault): commands, snapshot, waiting.
+    /// `false` ends the scan loop.
+    fn between(&mut self, image: &mut [u8], in_scan_loop: bool, scanned: bool) -> bool {
+        if scanned {
+            if let Some((left, _)) = &mut self.steps {
+                *left = left.saturating_sub(1);
+                if *left == 0 {
+                    if let Some((_, to)) = self.steps.take() {
+                        self.answers.push((to, Ok(())));
+                    }
+                    self.state = State::Stopped;
+                }
+            }
+        }
+        let mut first = true;
+        loop {
+            loop {
+                match self.rx.try_recv() {
+                    Ok(req) => self.handle(req, image, in_scan_loop),
+                    Err(TryRecvError::Empty) => break,
+                    // Every handle is gone: nobody can stop the PLC any more.
+                    Err(TryRecvError::Disconnected) => {
+                        self.quit = true;
+                        break;
+                    }
+                }
+            }
+            self.forces.borrow().apply(image);
+            self.publish(image);
+            if first && scanned {
+                self.feed();
+            }
+            self.answer();
+            first = false;
+            if self.quit || self.outside_stop.load(Ordering::Relaxed) {
+                self.clock.resume();
+                return false;
+            }
+            if self.restart.is_some() {
+                return false;
+            }
+            if self.state == State::Running {
+                self.clock.resume();
+                return true;
+            }
+            self.clock.pause();
+            match self.rx.recv_timeout(POLL) {
+                Ok(req) => self.handle(req, image, in_scan_loop),
+                Err(RecvTimeoutError::Timeout) => {}
+                Err(RecvTimeoutError::Disconnected) => {
+                    self.quit = true;
+                }
+            }
+        }
+    }
+}
+
+/// The cold-start image, RETAIN ranges kept from `image` when `warm`.
+fn restart_image(program: &Program, image: &mut [u8], warm: bool) {
+    let kept: Vec<(usize, Vec<u8>)> = if warm {
+        program
+            .retain
+            .iter()
+            .filter_map(|r| {
+                let (s, e) = (r.start as usize, r.end as usize);
+                image.get(s..e).map(|b| (s, b.to_vec()))
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    image.fill(0);
+    let n = program.initial_image.len().min(image.len());
+    if let (Some(dst), Some(src)) = (image.get_mut(..n), program.initial_image.get(..n)) {
+        dst.copy_from_slice(src);
+    }
+    for (s, bytes) in kept {
+        if let Some(dst) = image.get_mut(s..s + bytes.len()) {
+            dst.copy_from_slice(&bytes);
+        }
+    }
+}
+
+/// The observer the scan loop calls: the session's core and the caller's
+/// own observer.
+struct Observer<'a> {
+    core: &'a mut Core,
+}
+
+impl ScanObserver for Observer<'_> {
+    fn after_scan(&mut self, plc_time_ns: i64, image: &[u8]) -> Result<(), String> {
+        let c = &mut *self.core;
+        c.plc_time_ns = plc_time_ns.saturating_add(c.offset.get());
+        c.scans += 1;
+        match &mut c.extra {
+            Some(o) => o.after_scan(c.plc_time_ns, image),
+            None => Ok(()),
+        }
+    }
+
+    fn stats(&mut self, stats: &Stats) {
+        let c = &mut *self.core;
+        c.stats = CycleStats {
+            min_ns: stats.min_ns,
+            avg_ns: stats.avg_ns(),
+            max_ns: stats.max_ns,
+            overruns: stats.overruns,
+        };
+        if let Some(o) = &mut c.extra {
+            o.stats(stats);
+        }
+    }
+
+    fn between_scans(&mut self, image: &mut [u8]) -> bool {
+        let go_on = self.core.between(image, true, true);
+        match &mut self.core.extra {
+            Some(o) => o.between_scans(image) && go_on,
+            None => go_on,
+        }
+    }
+}
+
+pub(crate) fn main(
+    program: Arc<Program>,
+    config: Config,
+    build: crate::Build,
+    rx: Receiver<Request>,
+    shared: Arc<Shared>,
+    ready: Sender<Result<(), String>>,
+) -> Final {
+    let parts = match build() {
+        Ok(p) => p,
+        Err(e) => {
+            let _ = ready.send(Err(e.clone()));
+            return Final {
+                image: Vec::new(),
+                snapshot: Arc::clone(&*shared.snapshot.lock().unwrap_or_else(|p| p.into_inner())),
+                error: Some(e),
+            };
+        }
+    };
+    let Parts {
+        exec,
+        sim,
+        observer: extra,
+    } = parts;
+    let forces = Rc::new(RefCell::new(ForceTable::default()));
+    let offset = Rc::new(Cell::new(0i64));
+    let forcing = Forcing {
+        inner: Boxed(exec),
+        table: Rc::clone(&forces),
+    };
+    let inner: Box<dyn Executor> = match &sim {
+        Some(s) => Box::new(PlantExec::new(forcing, Rc::clone(s))),
+        None => Box::new(forcing),
+    };
+    let mut exec = Shifted {
+        inner: Boxed(inner),
+        offset: Rc::clone(&offset),
+    };
+    let clock = ClockHandle(Rc::new(RefCell::new(PausedClock {
+        inner: config.monotonic,
+        paused_ns: 0,
+        since: None,
+    })));
+    let mut core = Core {
+        program: Arc::clone(&program),
+        rx,
+        shared,
+        forces,
+        forces_shown: Arc::new(Vec::new()),
+        offset,
+        clock: clock.clone(),
+        outside_stop: Arc::clone(&config.stop),
+        extra,
+        state: if config.running {
+            State::Running
+        } else {
+            State::Stopped
+        },
+        steps: None,
+        plc_time_ns: 0,
+        scans: 0,
+        stats: CycleStats::default(),
+        subs: Vec::new(),
+        quit: false,
+        restart: None,
+        answers: Vec::new(),
+    };
+    let _ = ready.send(Ok(()));
+    let cfg = RunConfig {
+        cycle_time_ns: config.cycle_time_ns,
+        clock: config.clock,
+        limit: Limit::Unbounded,
+    };
+    let never = AtomicBool::new(false);
+    let mut error = None;
+    loop {
+        if core.restart.take().is_some() {
+            if let Some(s) = &sim {
+                s.borrow_mut().resume();
+            }
+        }
+        // A stopped session waits for a command before the next scan.
+        if core.state != State::Running && !core.between(exec.image_mut(), true, false) {
+            if core.restart.is_some() {
+                continue;
+            }
+            break;
+        }
+        let report = {
+            let mut clock = clock.clone();
+            let (mut inputs, mut outputs) = (NoIo, NoIo);
+            let mut observer = Observer { core: &mut core };
+            let mut env = Env {
+                clock: &mut clock,
+                inputs: &mut inputs,
+                outputs: &mut outputs,
+                observer: &mut observer,
+                stop: &never,
+            };
+            run(&mut exec, &cfg, &mut env)
+        };
+        match report {
+            Err(e) => {
+                error = Some(e);
+                break;
+            }
+            Ok(r) => match r.end {
+                RunEnd::Fault(f) => {
+                    if let Some(s) = &sim {
+                        s.borrow_mut().safe_state(exec.image());
+                    }
+                    if let Some((_, to)) = core.steps.take() {
+                        // Answered with the snapshot that shows the fault.
+                        core.answers
+                            .push((to, Err(Error::Refused(format!("runtime fault: {f}")))));
+                    }
+                    core.state = State::Fault {
+                        message: f.fault.message.clone(),
+                        site: format!(
+                            "{} in {} (task {}, program instance {}, PLC time {})",
+                            f.fault.site.location,
+                            f.fault.site.pou,
+                            f.task,
+                            f.instance,
+                            automat_iec::format::format_duration(
+                                f.plc_time_ns.saturating_add(core.offset.get()),
+                                false
+                            )
+                        ),
+                    };
+                    core.plc_time_ns = f.plc_time_ns.saturating_add(core.offset.get());
+                    if !core.between(exec.image_mut(), false, false) && core.restart.is_none() {
+                        break;
+                    }
+                    // The next run continues PLC time one base period after
+                    // the faulted scan.
+                    let base = automat_runtime::schedule::Schedule::new(
+                        &program.tasks,
+                        config.cycle_time_ns,
+                    )
+                    .map_or(config.cycle_time_ns, |s| s.base_ns());
+                    core.offset
+                        .set(core.plc_time_ns.saturating_add(base.max(1)));
+                }
+                RunEnd::Observer(e) => {
+                    error = Some(e);
+                    break;
+                }
+                RunEnd::Stopped | RunEnd::Limit | RunEnd::TimeExhausted => break,
+            },
+        }
+    }
+    finish(core, &exec, error)
+}
+
+fn finish(mut core: Core, exec: &impl Executor, error: Option<String>) -> Final {
+    core.state = match core.state {
+        State::Running => State::Stopped,
+        s => s,
+    };
+    core.publish(exec.image());
+    core.answer();
+    // Anyone still waiting learns that the session ended.
+    while let Ok(req) = core.rx.try_recv() {
+        let _ = req
+            .reply
+            .send(Err(Error::Gone("the PLC session has ended".into())));
+    }
+    if let Some((_, to)) = core.steps.take() {
+        let _ = to.send(Err(Error::Gone("the PLC session has ended".into())));
+    }
+    Final {
+        image: exec.image().to_vec(),
+        snapshot: core
+            .shared
+            .snapshot
+            .lock()
+            .map_or_else(|p| Arc::clone(&p.into_inner()), |s| Arc::clone(&s)),
+        error,
+    }
+}

@@ -1,0 +1,452 @@
+//! The PLC session: one running PLC that clients drive by name.
+//!
+//! A [`Session`] owns, on its own scan thread, the backend (interpreter or
+//! JIT, built there by the caller's [`Build`]), the scan runtime and its
+//! clock, the plant (if any), the force table and the statistics. Clients
+//! (`automat run`, the live view, the network server) hold the `Session`
+//! handle, which is `Send + Sync`:
+//!
+//! - reads, status, forces and subscriptions come from [`Snapshot`]s the
+//!   scan thread publishes after every scan (an `Arc` swapped under a lock
+//!   held only for the swap, never across a scan);
+//! - writes, forces, releases and run control are commands sent through a
+//!   channel; the scan thread drains it between scans, never blocks on it
+//!   while running, and answers each command once it took effect (the
+//!   client waits for that answer, the scan never waits for a client).
+//!
+//! Paths and values are checked on the client's thread, so a bad one is an
+//! [`Error`] at once, with the message `automat run --print` gives.
+//!
+//! Run control: `stop` pauses between two scans (PLC time and the plant
+//! stand still: time stopped is left out of the run's clock), `start`
+//! resumes, `step N` runs N scans and pauses again, `cold_restart` and
+//! `warm_restart` re-initialise the image (warm keeps RETAIN variables)
+//! while PLC time goes on; they are also how a PLC in fault starts again.
+
+mod core;
+pub mod force;
+pub mod symbols;
+pub mod value;
+
+pub use symbols::Node;
+
+use automat_ir::Program;
+use automat_project::Sim;
+use automat_runtime::{resolve, resolve_access, value as show, ClockMode, Executor, Monotonic};
+use automat_runtime::{Place, ScanObserver};
+use std::cell::RefCell;
+use std::rc::Rc;
+use std::sync::atomic::AtomicBool;
+use std::sync::mpsc::{channel, Receiver, Sender};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+use std::time::Duration;
+
+/// What the PLC is doing.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum State {
+    Running,
+    Stopped,
+    /// A runtime fault stopped it (outputs in the safe state); a restart
+    /// starts it again.
+    Fault {
+        message: String,
+        site: String,
+    },
+}
+
+impl State {
+    pub fn name(&self) -> &'static str {
+        match self {
+            State::Running => "running",
+            State::Stopped => "stopped",
+            State::Fault { .. } => "fault",
+        }
+    }
+}
+
+/// Cycle statistics of the run (since the last restart after a fault).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct CycleStats {
+    pub min_ns: Option<i64>,
+    pub avg_ns: Option<i64>,
+    pub max_ns: Option<i64>,
+    pub overruns: u64,
+}
+
+/// The PLC as the scan thread last published it.
+#[derive(Clone, Debug)]
+pub struct Snapshot {
+    /// PLC time of the last scan (0 before the first).
+    pub plc_time_ns: i64,
+    /// Scans that ran a task since the session started.
+    pub scans: u64,
+    pub state: State,
+    pub stats: CycleStats,
+    /// The memory image after the last scan, with writes and forces that
+    /// came since applied.
+    pub image: Vec<u8>,
+    /// Forced paths with their values, in the order they were set.
+    pub forces: Arc<Vec<(String, String)>>,
+}
+
+/// Why a request was refused.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Error {
+    /// An unknown or malformed path (the `--print` message).
+    Path(String),
+    /// A value that does not parse as the target's type.
+    Value(String),
+    /// A CONSTANT, a step flag or time, compiler-generated state.
+    ReadOnly(String),
+    /// A command that does not apply now (e.g. `start` in fault).
+    Refused(String),
+    /// The scan thread has ended or did not answer.
+    Gone(String),
+}
+
+impl Error {
+    pub fn message(&self) -> &str {
+        match self {
+            Error::Path(m) | Error::Value(m) | Error::ReadOnly(m) | Error::Refused(m) => m,
+            Error::Gone(m) => m,
+        }
+    }
+}
+
+impl std::fmt::Display for Error {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.message())
+    }
+}
+
+/// Run control.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Control {
+    Start,
+    Stop,
+    /// Run this many scans (that run a task), then stop.
+    Step(u64),
+    ColdRestart,
+    WarmRestart,
+}
+
+/// What the scan thread runs, built there (backends and plants need not
+/// be `Send`).
+pub struct Parts {
+    pub exec: Box<dyn Executor>,
+    /// The plant, synchronised before the first program of each scan;
+    /// forces sit between it and the program.
+    pub sim: Option<Rc<RefCell<Sim>>>,
+    /// Sees every scan too (a trace, the live view).
+    pub observer: Option<Box<dyn ScanObserver>>,
+}
+
+pub type Build = Box<dyn FnOnce() -> Result<Parts, String> + Send>;
+
+pub struct Config {
+    /// The cyclic task's period when there is no CONFIGURATION.
+    pub cycle_time_ns: i64,
+    pub clock: ClockMode,
+    /// The clock that paces real time and measures scans.
+    pub monotonic: Box<dyn Monotonic + Send>,
+    /// Start running at once (otherwise stopped, waiting for commands).
+    pub running: bool,
+    /// Set from outside (Ctrl-C, SIGTERM) to end the session at the end of
+    /// the scan.
+    pub stop: Arc<AtomicBool>,
+}
+
+/// How the session ended.
+#[derive(Debug)]
+pub struct Final {
+    /// The image at the end (for saving RETAIN variables).
+    pub image: Vec<u8>,
+    pub snapshot: Arc<Snapshot>,
+    /// Why the scan loop ended when not by a stop (a configuration error,
+    /// the caller's observer).
+    pub error: Option<String>,
+}
+
+/// Values of watched paths after a scan, as `--print` shows them.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Update {
+    pub plc_time_ns: i64,
+    pub scans: u64,
+    pub values: Vec<(String, String)>,
+}
+
+/// Called on the scan thread with each snapshot due; must not block (try
+/// a bounded channel); `false` ends the subscription.
+pub type Sink = Box<dyn FnMut(&Arc<Snapshot>) -> bool + Send>;
+
+pub(crate) enum Command {
+    Write(value::Stored),
+    Force(force::Force),
+    Unforce(Option<value::Stored>),
+    Control(Control),
+    Subscribe { period_ns: i64, sink: Sink },
+    Quit,
+}
+
+pub(crate) struct Request {
+    pub command: Command,
+    pub reply: Sender<Result<(), Error>>,
+}
+
+pub(crate) struct Shared {
+    pub snapshot: Mutex<Arc<Snapshot>>,
+}
+
+/// The handle clients hold (see the crate comment).
+pub struct Session {
+    program: Arc<Program>,
+    shared: Arc<Shared>,
+    tx: Mutex<Sender<Request>>,
+    thread: Mutex<Option<JoinHandle<Final>>>,
+}
+
+/// How long a client waits for the scan thread to take a command.
+const ANSWER_WITHIN: Duration = Duration::from_secs(60);
+
+impl Session {
+    /// Starts the scan thread; errors when `build` fails.
+    pub fn start(program: Arc<Program>, config: Config, build: Build) -> Result<Session, String> {
+        let empty = Snapshot {
+            plc_time_ns: 0,
+            scans: 0,
+            state: if config.running {
+                State::Running
+            } else {
+                State::Stopped
+            },
+            stats: CycleStats::default(),
+            image: program.initial_image.clone(),
+            forces: Arc::new(Vec::new()),
+        };
+        let shared = Arc::new(Shared {
+            snapshot: Mutex::new(Arc::new(empty)),
+        });
+        let (tx, rx): (Sender<Request>, Receiver<Request>) = channel();
+        let (ready_tx, ready_rx) = channel();
+        let thread_shared = Arc::clone(&shared);
+        let thread_program = Arc::clone(&program);
+        let thread = std::thread::Builder::new()
+            .name("automat-scan".into())
+            .spawn(move || core::main(thread_program, config, build, rx, thread_shared, ready_tx))
+            .map_err(|e| format!("cannot start the scan thread: {e}"))?;
+        match ready_rx.recv() {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => {
+                let _ = thread.join();
+                return Err(e);
+            }
+            Err(_) => return Err("the scan thread ended before starting".into()),
+        }
+        Ok(Session {
+            program,
+            shared,
+            tx: Mutex::new(tx),
+            thread: Mutex::new(Some(thread)),
+        })
+    }
+
+    pub fn program(&self) -> &Program {
+        &self.program
+    }
+
+    /// The last published snapshot.
+    pub fn snapshot(&self) -> Arc<Snapshot> {
+        match self.shared.snapshot.lock() {
+            Ok(s) => Arc::clone(&s),
+            Err(p) => Arc::clone(&p.into_inner()),
+        }
+    }
+
+    /// Resolves a path for reading.
+    pub fn place(&self, path: &str) -> Result<Place, Error> {
+        resolve(&self.program, path).map_err(Error::Path)
+    }
+
+    /// The values of `paths` in the last snapshot, as `--print` shows them.
+    pub fn read(&self, paths: &[String]) -> Result<Vec<(String, String)>, Error> {
+        let places = paths
+            .iter()
+            .map(|p| self.place(p))
+            .collect::<Result<Vec<Place>, Error>>()?;
+        let snap = self.snapshot();
+        Ok(paths
+            .iter()
+            .zip(&places)
+            .map(|(p, pl)| (p.clone(), show::format(&snap.image, pl)))
+            .collect())
+    }
+
+    /// Where `path` is and what storing `text` there means; refused for
+    /// what only the compiler or a chart may change.
+    pub fn target(&self, path: &str, text: &str) -> Result<value::Stored, Error> {
+        let path = path.trim();
+        let a = resolve_access(&self.program, path).map_err(Error::Path)?;
+        if a.constant {
+            return Err(Error::ReadOnly(format!(
+                "`{path}` is a CONSTANT and cannot be written or forced"
+            )));
+        }
+        if let Some(hidden) = &a.generated {
+            let upper = path.to_ascii_uppercase();
+            let what = if hidden.starts_with("__SFC_STEP") || hidden.starts_with("__SFC_INITIAL") {
+                if upper.ends_with(".T") {
+                    "a step time"
+                } else if upper.ends_with(".X") {
+                    "a step flag"
+                } else {
+                    "step state"
+                }
+            } else if hidden.starts_with("__SFC_ACTION") {
+                "an action's control state"
+            } else {
+                "compiler-generated state"
+            };
+            return Err(Error::ReadOnly(format!(
+                "`{path}` is {what}; only the program's chart changes it, it cannot be written or forced"
+            )));
+        }
+        value::encode(&a.place, text, a.bounds).map_err(|e| Error::Value(format!("`{path}`: {e}")))
+    }
+
+    fn send(&self, command: Command) -> Result<(), Error> {
+        let (reply, answer) = channel();
+        let sent = match self.tx.lock() {
+            Ok(tx) => tx.send(Request { command, reply }),
+            Err(p) => p.into_inner().send(Request { command, reply }),
+        };
+        sent.map_err(|_| Error::Gone("the PLC session has ended".into()))?;
+        match answer.recv_timeout(ANSWER_WITHIN) {
+            Ok(r) => r,
+            Err(_) => Err(Error::Gone(
+                "the PLC did not take the command (the session has ended or is busy)".into(),
+            )),
+        }
+    }
+
+    /// Writes `text` once, between two scans (the program may overwrite
+    /// it at its next scan; a force holds).
+    pub fn write(&self, path: &str, text: &str) -> Result<(), Error> {
+        let stored = self.target(path, text)?;
+        self.send(Command::Write(stored))
+    }
+
+    /// Forces `path` to `text` until released.
+    pub fn force(&self, path: &str, text: &str) -> Result<(), Error> {
+        let stored = self.target(path, text)?;
+        self.send(Command::Force(force::Force {
+            path: path.trim().to_string(),
+            text: text.trim().to_string(),
+            stored,
+        }))
+    }
+
+    /// Releases the force of `path` (an error when it is not forced).
+    pub fn unforce(&self, path: &str) -> Result<(), Error> {
+        let a = resolve_access(&self.program, path.trim()).map_err(Error::Path)?;
+        // Any value of the right shape names the location.
+        let stored = match a.place.bit {
+            Some(bit) => value::Stored::Bit {
+                offset: a.place.offset as usize,
+                bit,
+                value: false,
+            },
+            None => value::Stored::Bytes {
+                offset: a.place.offset as usize,
+                bytes: Vec::new(),
+            },
+        };
+        self.send(Command::Unforce(Some(stored)))
+    }
+
+    pub fn unforce_all(&self) -> Result<(), Error> {
+        self.send(Command::Unforce(None))
+    }
+
+    /// The forced paths and values.
+    pub fn forces(&self) -> Vec<(String, String)> {
+        self.snapshot().forces.as_ref().clone()
+    }
+
+    /// Whether the location of `place` is forced (whatever name the force
+    /// was given), for views that mark forced values.
+    pub fn is_forced(&self, place: &Place) -> bool {
+        self.snapshot().forces.iter().any(|(path, _)| {
+            resolve(&self.program, path)
+                .is_ok_and(|f| f.offset == place.offset && f.bit == place.bit)
+        })
+    }
+
+    /// Run control; returns once it took effect (`step` once the scans ran).
+    pub fn control(&self, c: Control) -> Result<(), Error> {
+        self.send(Command::Control(c))
+    }
+
+    /// The symbol tree under `prefix` (everything when empty).
+    pub fn symbols(&self, prefix: &str) -> Result<Vec<Node>, Error> {
+        symbols::tree(&self.program, prefix).ok_or_else(|| {
+            Error::Path(format!(
+                "unknown variable `{}`: nothing is declared under this name",
+                prefix.trim()
+            ))
+        })
+    }
+
+    /// Calls `sink` with the values of `paths` after every scan
+    /// (`period_ns` ≤ 0) or at most once per `period_ns` of PLC time.
+    /// The values are formatted on the scan thread only for subscriptions
+    /// due; `sink` must not block.
+    pub fn subscribe(
+        &self,
+        paths: &[String],
+        period_ns: i64,
+        mut sink: Box<dyn FnMut(Update) -> bool + Send>,
+    ) -> Result<(), Error> {
+        let places = paths
+            .iter()
+            .map(|p| self.place(p))
+            .collect::<Result<Vec<Place>, Error>>()?;
+        let names = paths.to_vec();
+        let raw: Sink = Box::new(move |snap: &Arc<Snapshot>| {
+            sink(Update {
+                plc_time_ns: snap.plc_time_ns,
+                scans: snap.scans,
+                values: names
+                    .iter()
+                    .zip(&places)
+                    .map(|(n, p)| (n.clone(), show::format(&snap.image, p)))
+                    .collect(),
+            })
+        });
+        self.subscribe_raw(period_ns, raw)
+    }
+
+    /// As [`Session::subscribe`], the sink getting the whole snapshot (a
+    /// server decodes on its own threads).
+    pub fn subscribe_raw(&self, period_ns: i64, sink: Sink) -> Result<(), Error> {
+        self.send(Command::Subscribe { period_ns, sink })
+    }
+
+    /// Ends the session at the end of the scan and returns its last state.
+    pub fn shutdown(&self) -> Result<Final, String> {
+        let _ = self.send(Command::Quit);
+        self.join()
+    }
+
+    /// Waits for the scan thread to end by itself (the stop flag).
+    pub fn join(&self) -> Result<Final, String> {
+        let handle = match self.thread.lock() {
+            Ok(mut t) => t.take(),
+            Err(p) => p.into_inner().take(),
+        };
+        match handle {
+            Some(h) => h.join().map_err(|_| "the scan thread panicked".to_string()),
+            None => Err("the session has already ended".into()),
+        }
+    }
+}
