@@ -109,6 +109,18 @@ pub struct RunArgs {
     /// bounds the run when neither --cycles nor --duration is given.
     #[arg(long, value_name = "FILE.scn")]
     pub(crate) scenario: Option<PathBuf>,
+    /// The watchdog of the implicit task (and of every task without
+    /// `[tasks.NAME] watchdog` in automat.toml): a run of the task longer
+    /// than TIME (`100ms`, `T#2s`) stops the PLC with a fault naming the
+    /// task and the line it was executing; `off` for none. Default: 10s of
+    /// wall time per run on the virtual clock, off in real time. See
+    /// docs/watchdog.md.
+    #[arg(long, value_name = "TIME|off", value_parser = automat_runtime::watchdog::parse_watchdog)]
+    pub(crate) watchdog: Option<automat_ir::TaskWatchdog>,
+    /// Fault a task run after N IR instructions (deterministic, for tests;
+    /// off by default).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub(crate) max_instructions: Option<u64>,
 }
 
 /// Splits `--trace` values on the commas that are not inside `[...]`, so
@@ -241,10 +253,12 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
         eprintln!("error: --cycle-time must be longer than 0");
         return Err(Outcome::BadInput);
     }
-    let program = compile(args)?;
+    let mut program = compile(args)?;
+    crate::engines::default_watchdog(&mut program, args.watchdog);
     let prints = places(&program, &args.print, "--print")?;
     let traced = trace_columns(&program, &split_trace(&args.trace))?;
     let mut engine = crate::engines::build(program, args.engine);
+    engine.set_budget(args.max_instructions);
     warm_start(&mut engine, args);
 
     let mut trace = match &args.trace_file {
@@ -274,8 +288,9 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
     };
     let stop = Arc::new(AtomicBool::new(false));
     if limit == Limit::Unbounded {
-        // Ctrl-C only asks the loop to stop; the scan in progress completes
-        // and the RETAIN variables are saved below.
+        // Ctrl-C (and SIGTERM, SIGHUP) only asks the loop to stop; the scan
+        // in progress completes (or is stopped as a fault a second later,
+        // by the runtime's watchdog) and the RETAIN variables are saved below.
         let flag = Arc::clone(&stop);
         if let Err(e) = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed)) {
             eprintln!("warning: cannot handle Ctrl-C ({e}); stop the PLC with a signal");

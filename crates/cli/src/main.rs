@@ -32,7 +32,8 @@ struct Cli {
 enum Command {
     Check(cmd_check::CheckArgs),
     Explain(cmd_explain::ExplainArgs),
-    Run(cmd_run::RunArgs),
+    // Boxed: by far the largest set of flags.
+    Run(Box<cmd_run::RunArgs>),
     Test(cmd_test::TestArgs),
     Plot(plot::PlotArgs),
 }

@@ -131,7 +131,7 @@ fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
     let program_name = args.program.clone().or(project.program.clone());
     let mut libraries = project.libraries.clone();
     libraries.extend(args.libs.iter().cloned());
-    let program = match build::compile(&project.sources, program_name, &libraries) {
+    let mut program = match build::compile(&project.sources, program_name, &libraries) {
         Ok((p, warnings)) => {
             eprint!("{warnings}");
             p
@@ -145,6 +145,8 @@ fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
             });
         }
     };
+    automat_project::tasks::apply(&project.tasks, &mut program).map_err(|d| fail(&map, &d))?;
+    crate::engines::default_watchdog(&mut program, args.watchdog);
     let plant = match project.new_plant() {
         Ok(Some(p)) => p,
         Ok(None) => {
@@ -253,6 +255,7 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
         live,
     };
     let mut engine = crate::engines::build(program.clone(), args.engine);
+    engine.set_budget(args.max_instructions);
     warm_start(&mut engine, args);
     let mut exec = PlantExec::new(engine, Rc::clone(&sim));
     let cfg = RunConfig {

@@ -13,8 +13,11 @@
 //!   (`emit.rs`). Checking instructions are compiled where the IR has them.
 //! - Faults: generated code calls a Rust helper that builds the same
 //!   [`Fault`] as the interpreter (through `automat_engine::shared`) and
-//!   returns status 1 up the native call chain. The watchdog counts
-//!   instructions exactly like the interpreter (`translate.rs`).
+//!   returns status 1 up the native call chain. The instruction budget
+//!   counts exactly like the interpreter (`translate.rs`); the interrupt
+//!   flag ([`Jit::interrupt`]) is polled at loop headers every
+//!   [`automat_ir::interrupt::POLL_INSTRUCTIONS`] (a load and a compare
+//!   per iteration, the call on a cold path) and after long copies.
 //! - Standard functions run in the interpreter's own implementation
 //!   (`automat_engine::shared::builtin`) through one helper.
 //! - [`Jit::new`] verifies the program and returns an error naming anything
@@ -27,7 +30,7 @@ mod rt;
 mod translate;
 
 use automat_ir::code::Inst;
-use automat_ir::{Fault, FaultKind, Program, ProgramInstance, Site};
+use automat_ir::{Fault, FaultKind, Interrupt, Program, ProgramInstance, Site};
 use cranelift_jit::JITModule;
 
 /// Why a program cannot be compiled; the interpreter runs it instead.
@@ -83,6 +86,7 @@ impl Jit {
             program: &*program,
             builtins: compiled.builtins,
             budget: automat_engine::DEFAULT_BUDGET,
+            interrupt: Interrupt::new(),
         });
         Ok(Jit {
             program,
@@ -122,10 +126,17 @@ impl Jit {
         self.image.resize(self.program.image_size as usize, 0);
     }
 
-    /// The watchdog budget in instructions per run (as the interpreter's).
+    /// The instruction budget per run (as the interpreter's; `u64::MAX`,
+    /// the default, is none).
     pub fn set_budget(&mut self, instructions: u64) {
         self.budget = instructions.max(1);
         self.shared.budget = self.budget;
+    }
+
+    /// The flag that stops the run in progress at its next poll (as the
+    /// interpreter's `Engine::interrupt`).
+    pub fn interrupt(&self) -> Interrupt {
+        self.shared.interrupt.clone()
     }
 
     /// Runs one program instance once at PLC time `now_ns`. A fault leaves
@@ -168,12 +179,14 @@ impl Jit {
                 });
             }
         }
+        let left = self.budget.min(i64::MAX as u64) as i64;
         let mut ctx = rt::RunCtx {
             image: self.image.as_mut_ptr(),
             image_len: self.image.len() as u64,
-            left: self.budget.min(i64::MAX as u64) as i64,
+            left,
             now: now_ns,
             shared: &*self.shared,
+            mark: rt::first_mark(left),
             fault: None,
         };
         // SAFETY: `entry` was compiled from this program with the `EntryFn`
@@ -287,5 +300,8 @@ impl automat_runtime::Executor for Jit {
     }
     fn run_program(&mut self, inst: &ProgramInstance, now_ns: i64) -> Result<(), Fault> {
         Jit::run_program(self, inst, now_ns)
+    }
+    fn interrupt(&self) -> Interrupt {
+        Jit::interrupt(self)
     }
 }

@@ -12,6 +12,12 @@
 //! exactly the same stores and with any earlier fault of the block first.
 //! The budget lives in a variable and is written back to the context only
 //! around calls and returns.
+//!
+//! # The interrupt flag
+//! Loop headers (targets of backward jumps) compare the budget with
+//! `RunCtx::mark` and, every `POLL_INSTRUCTIONS`, call `rt::jit_poll` on a
+//! cold path; `rt::jit_copy` polls after long copies. Straight-line code
+//! needs no poll: without recursion, only loops run long.
 
 use crate::rt::{self, BuiltinCall, RunCtx};
 use crate::JitError;
@@ -27,6 +33,8 @@ pub struct Helpers {
     pub fault: FuncRef,
     pub builtin: FuncRef,
     pub copy: FuncRef,
+    /// `rt::jit_poll`: the interrupt flag, polled at loop headers.
+    pub poll: FuncRef,
     /// (IR function index, reference) of every callee.
     pub callees: Vec<(u32, FuncRef)>,
     /// For the fast variant of a function with `This` accesses: the
@@ -61,6 +69,8 @@ pub(crate) struct Tx<'a, 'b> {
     pub ret_to: Option<cranelift_codegen::ir::Block>,
     /// Instructions inlined so far into this function (bounded).
     pub inlined: usize,
+    /// The instruction being translated (its index in `f`).
+    pub pc: u32,
 }
 
 /// Callees at most this long, without calls of their own, are inlined.
@@ -141,6 +151,27 @@ fn leaders(code: &[Inst]) -> Vec<bool> {
         }
     }
     l
+}
+
+/// Instruction indexes that a jump or branch at or after them targets:
+/// the headers of every loop, where the interrupt flag is polled.
+fn loop_headers(code: &[Inst]) -> Vec<bool> {
+    let mut h = vec![false; code.len() + 1];
+    for (pc, inst) in code.iter().enumerate() {
+        let targets = match *inst {
+            Inst::Jump { target } => [Some(target), None],
+            Inst::Branch { then, els, .. } => [Some(then), Some(els)],
+            _ => [None, None],
+        };
+        for t in targets.into_iter().flatten() {
+            if (t as usize) <= pc {
+                if let Some(x) = h.get_mut(t as usize) {
+                    *x = true;
+                }
+            }
+        }
+    }
+    h
 }
 
 fn is_terminator(inst: &Inst) -> bool {
@@ -224,6 +255,7 @@ pub fn function(
         funcs,
         ret_to: None,
         inlined: 0,
+        pc: 0,
     };
     tx.body()?;
     tx.b.seal_all_blocks();
@@ -294,6 +326,7 @@ impl Tx<'_, '_> {
     fn body(&mut self) -> Result<(), JitError> {
         let code = &self.f.code;
         let lead = leaders(code);
+        let headers = loop_headers(code);
         let mut blocks = Vec::with_capacity(code.len());
         for &is in lead.iter().take(code.len()) {
             blocks.push(is.then(|| self.b.create_block()));
@@ -311,12 +344,16 @@ impl Tx<'_, '_> {
                 return Err(JitError::Backend("block map".into()));
             };
             self.b.switch_to_block(block);
+            if headers.get(start).copied().unwrap_or(false) {
+                self.poll(start)?;
+            }
             self.charge(start, end)?;
             for pc in start..end {
                 let inst = code
                     .get(pc)
                     .copied()
                     .ok_or_else(|| JitError::Backend("pc".into()))?;
+                self.pc = pc as u32;
                 self.control(&inst, pc as u32, &block_at)?;
             }
             if !code.get(end - 1).is_some_and(is_terminator) {
@@ -326,6 +363,35 @@ impl Tx<'_, '_> {
             }
             start = end;
         }
+        Ok(())
+    }
+
+    /// At a loop header (`pc`, the target of a backward jump): when the
+    /// budget has fallen to `RunCtx::mark` (every `POLL_INSTRUCTIONS`),
+    /// the cold path calls `rt::jit_poll`, which faults if the interrupt
+    /// flag is raised and sets the next mark. Every endless run passes a
+    /// loop header (no recursion), so this is the only poll needed; it
+    /// costs one load and compare per loop iteration.
+    fn poll(&mut self, pc: usize) -> Result<(), JitError> {
+        let l = self.b.use_var(self.left);
+        let mark = self.b.ins().load(types::I64, mem(), self.ctx, rt::OFF_MARK);
+        let due = self.b.ins().icmp(IntCC::SignedLessThan, l, mark);
+        let slow = self.b.create_block();
+        let cont = self.b.create_block();
+        self.b.set_cold_block(slow);
+        self.b.ins().brif(due, slow, &[], cont, &[]);
+        self.b.switch_to_block(slow);
+        let (fv, pv) = (self.iconst(self.index as i64), self.iconst(pc as i64));
+        let call = self.b.ins().call(self.h.poll, &[self.ctx, l, fv, pv]);
+        let status = self
+            .b
+            .inst_results(call)
+            .first()
+            .copied()
+            .ok_or_else(|| JitError::Backend("poll result".into()))?;
+        self.propagate(status);
+        self.b.ins().jump(cont, &[]);
+        self.b.switch_to_block(cont);
         Ok(())
     }
 
@@ -355,6 +421,7 @@ impl Tx<'_, '_> {
                 .copied()
                 .ok_or_else(|| JitError::Backend("pc".into()))?;
             if !is_terminator(&inst) && !matches!(inst, Inst::Call { .. }) {
+                self.pc = pc as u32;
                 self.emit(&inst)?;
             }
         }
@@ -474,7 +541,9 @@ impl<'a> Tx<'a, '_> {
             self.ret_to.replace(cont),
         );
         self.inlined += g.code.len();
+        let pc = self.pc;
         let r = self.body();
+        self.pc = pc;
         (
             self.f,
             self.index,

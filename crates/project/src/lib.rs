@@ -2,13 +2,15 @@
 //! sources and a virtual plant bound to the program.
 //!
 //! - [`file`]: the project file (`[project]`, `[plant]`, `[plant.params]`,
-//!   `[bind]`) with `file:line:col` diagnostics (E300–E308).
+//!   `[bind]`, `[tasks.NAME]`) with `file:line:col` diagnostics (E300–E308).
 //! - [`bind`]: signals → PLC variables, checked at load.
 //! - [`image`]: plant values in and out of the memory image.
 //! - [`sim`]: the coupling of the model to the scan, with overrides
 //!   (stuck sensors and actuators, noise) and timed [`sim::Action`]s.
 //! - [`exec`]: a backend wrapped so the runtime's scan loop drives the plant.
 //! - [`steps`]: the active steps of the program's charts (live view).
+//! - [`tasks`]: `[tasks.NAME]` settings (the watchdog) applied to the
+//!   program's tasks.
 //!
 //! The contract the plant models follow is in `crates/plant/README.md`.
 
@@ -19,6 +21,7 @@ pub mod file;
 pub mod image;
 pub mod sim;
 pub mod steps;
+pub mod tasks;
 
 pub use bind::{bind, Binding};
 pub use exec::PlantExec;
