@@ -72,7 +72,10 @@ fn sig(m: &JITModule, params: &[types::Type], ret: bool) -> Signature {
 }
 
 /// Compiles all functions; `Err` if the backend refuses something.
-pub fn compile(program: &Program) -> Result<Compiled, JitError> {
+/// `counted`: with the instruction budget's bookkeeping (see
+/// `translate.rs`); `flag`: the address of the interrupt flag the code
+/// polls, alive as long as the code.
+pub fn compile(program: &Program, counted: bool, flag: i64) -> Result<Compiled, JitError> {
     let mut m = module()?;
     let ptr = m.target_config().pointer_type();
     let i64t = types::I64;
@@ -165,6 +168,8 @@ pub fn compile(program: &Program) -> Result<Compiled, JitError> {
                 builtin: m.declare_func_in_func(builtin, &mut ctx.func),
                 copy: m.declare_func_in_func(copy, &mut ctx.func),
                 poll: m.declare_func_in_func(poll, &mut ctx.func),
+                counted,
+                flag,
                 callees: refs,
                 checked,
                 static_this: bounds.get(i).copied().flatten().is_some(),

@@ -61,6 +61,12 @@ pub struct Jit {
     program: Box<Program>,
     image: Vec<u8>,
     budget: u64,
+    /// Whether the code counts the budget: compiled so by the first
+    /// `set_budget` with a finite budget (the default code has no budget
+    /// bookkeeping at all, so it compiles and runs faster).
+    counted: bool,
+    /// Why that recompilation failed (every run then faults with it).
+    recompile_error: Option<JitError>,
     /// Native entry of every function the tasks can reach.
     entries: Vec<Option<compile::EntryFn>>,
     /// Per function: `Some(bound)` when compiled without its entry check
@@ -79,19 +85,22 @@ impl Jit {
             .map_err(|e| JitError::Invalid(e.to_string()))?;
         check_calls(&program)?;
         let program = Box::new(program);
-        let compiled = compile::compile(&program)?;
+        let interrupt = Interrupt::new();
+        let compiled = compile::compile(&program, false, interrupt.as_ptr() as i64)?;
         let mut image = program.initial_image.clone();
         image.resize(program.image_size as usize, 0);
         let shared = Box::new(rt::Shared {
             program: &*program,
             builtins: compiled.builtins,
             budget: automat_engine::DEFAULT_BUDGET,
-            interrupt: Interrupt::new(),
+            interrupt,
         });
         Ok(Jit {
             program,
             image,
             budget: automat_engine::DEFAULT_BUDGET,
+            counted: false,
+            recompile_error: None,
             entries: compiled.entries,
             bounds: compiled.bounds,
             shared,
@@ -127,10 +136,35 @@ impl Jit {
     }
 
     /// The instruction budget per run (as the interpreter's; `u64::MAX`,
-    /// the default, is none).
+    /// the default, is none). The first finite budget recompiles the
+    /// program with the budget's bookkeeping (the image is kept).
     pub fn set_budget(&mut self, instructions: u64) {
         self.budget = instructions.max(1);
         self.shared.budget = self.budget;
+        if self.budget != u64::MAX && !self.counted {
+            self.counted = true;
+            let flag = self.shared.interrupt.as_ptr() as i64;
+            match compile::compile(&self.program, true, flag) {
+                Ok(c) => {
+                    self.free_code();
+                    self.entries = c.entries;
+                    self.bounds = c.bounds;
+                    self.shared.builtins = c.builtins;
+                    self.module = Some(c.module);
+                }
+                Err(e) => self.recompile_error = Some(e),
+            }
+        }
+    }
+
+    /// Frees the generated code (nothing may run it afterwards).
+    fn free_code(&mut self) {
+        if let Some(m) = self.module.take() {
+            self.entries.clear();
+            // SAFETY: the only pointers into the module's code are `entries`,
+            // cleared above; nothing runs generated code after this point.
+            unsafe { m.free_memory() };
+        }
     }
 
     /// The flag that stops the run in progress at its next poll (as the
@@ -147,6 +181,16 @@ impl Jit {
 
     /// Runs any function with an instance base (for tests and tools).
     pub fn run_func(&mut self, func: u32, this: u32, now_ns: i64) -> Result<(), Fault> {
+        if let Some(e) = &self.recompile_error {
+            return Err(Fault {
+                kind: FaultKind::Function,
+                message: format!("cannot compile the program with an instruction budget: {e}"),
+                site: Site {
+                    pou: String::new(),
+                    location: String::new(),
+                },
+            });
+        }
         let Some(&Some(entry)) = self.entries.get(func as usize) else {
             return Err(Fault {
                 kind: FaultKind::Function,
@@ -218,12 +262,7 @@ impl Jit {
 
 impl Drop for Jit {
     fn drop(&mut self) {
-        if let Some(m) = self.module.take() {
-            self.entries.clear();
-            // SAFETY: the only pointers into the module's code are `entries`,
-            // cleared above; nothing runs generated code after this point.
-            unsafe { m.free_memory() };
-        }
+        self.free_code();
     }
 }
 

@@ -13,11 +13,16 @@
 //! The budget lives in a variable and is written back to the context only
 //! around calls and returns.
 //!
+//! All of this only in code compiled with a budget (`Helpers::counted`);
+//! without one (the default) there is no bookkeeping at all.
+//!
 //! # The interrupt flag
-//! Loop headers (targets of backward jumps) compare the budget with
-//! `RunCtx::mark` and, every `POLL_INSTRUCTIONS`, call `rt::jit_poll` on a
-//! cold path; `rt::jit_copy` polls after long copies. Straight-line code
-//! needs no poll: without recursion, only loops run long.
+//! Loop headers (targets of backward jumps) poll it: counted code when the
+//! budget reaches `RunCtx::mark` (every `POLL_INSTRUCTIONS`), uncounted
+//! code by loading the flag each iteration; a raised flag calls
+//! `rt::jit_poll` on a cold path, which records the fault. `rt::jit_copy`
+//! polls after long copies. Straight-line code needs no poll: without
+//! recursion, only loops run long.
 
 use crate::rt::{self, BuiltinCall, RunCtx};
 use crate::JitError;
@@ -35,6 +40,14 @@ pub struct Helpers {
     pub copy: FuncRef,
     /// `rt::jit_poll`: the interrupt flag, polled at loop headers.
     pub poll: FuncRef,
+    /// Whether the code counts the instruction budget (compiled so only
+    /// when a finite budget is set): blocks charge their length, loop
+    /// headers poll when the budget reaches `RunCtx::mark`. Without it
+    /// there is no budget bookkeeping at all and loop headers test the
+    /// interrupt flag itself, at `flag`.
+    pub counted: bool,
+    /// The address of the interrupt flag (an `AtomicBool` the `Jit` owns).
+    pub flag: i64,
     /// (IR function index, reference) of every callee.
     pub callees: Vec<(u32, FuncRef)>,
     /// For the fast variant of a function with `This` accesses: the
@@ -319,6 +332,9 @@ impl Tx<'_, '_> {
     }
 
     fn store_left(&mut self) {
+        if !self.h.counted {
+            return;
+        }
         let l = self.b.use_var(self.left);
         self.b.ins().store(mem(), l, self.ctx, rt::OFF_LEFT);
     }
@@ -373,9 +389,17 @@ impl Tx<'_, '_> {
     /// loop header (no recursion), so this is the only poll needed; it
     /// costs one load and compare per loop iteration.
     fn poll(&mut self, pc: usize) -> Result<(), JitError> {
-        let l = self.b.use_var(self.left);
-        let mark = self.b.ins().load(types::I64, mem(), self.ctx, rt::OFF_MARK);
-        let due = self.b.ins().icmp(IntCC::SignedLessThan, l, mark);
+        let (l, due) = if self.h.counted {
+            let l = self.b.use_var(self.left);
+            let mark = self.b.ins().load(types::I64, mem(), self.ctx, rt::OFF_MARK);
+            (l, self.b.ins().icmp(IntCC::SignedLessThan, l, mark))
+        } else {
+            // The flag itself: one byte load per iteration (an AtomicBool
+            // is a byte; a relaxed load is a plain load on every host).
+            let at = self.iconst(self.h.flag);
+            let v = self.b.ins().load(types::I8, mem(), at, 0);
+            (self.iconst(0), v)
+        };
         let slow = self.b.create_block();
         let cont = self.b.create_block();
         self.b.set_cold_block(slow);
@@ -398,6 +422,9 @@ impl Tx<'_, '_> {
     /// Charges the block `start..end` to the budget on entry; when it does
     /// not cover the block, runs the counting copy (which ends in a fault).
     fn charge(&mut self, start: usize, end: usize) -> Result<(), JitError> {
+        if !self.h.counted {
+            return Ok(());
+        }
         let n = (end - start) as i64;
         let l = self.b.use_var(self.left);
         let l2 = self.b.ins().iadd_imm_s(l, -n);
@@ -493,8 +520,10 @@ impl Tx<'_, '_> {
                     .copied()
                     .ok_or_else(|| JitError::Backend("call result".into()))?;
                 self.propagate(status);
-                let l = self.b.ins().load(types::I64, mem(), self.ctx, rt::OFF_LEFT);
-                self.b.def_var(self.left, l);
+                if self.h.counted {
+                    let l = self.b.ins().load(types::I64, mem(), self.ctx, rt::OFF_LEFT);
+                    self.b.def_var(self.left, l);
+                }
                 self.b.ins().jump(cont, &[]);
                 self.b.switch_to_block(cont);
             }

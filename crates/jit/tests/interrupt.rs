@@ -151,16 +151,28 @@ fn a_finite_loop_longer_than_many_slices_runs_to_its_end() {
 #[test]
 fn a_raised_flag_stops_an_endless_loop_at_the_next_poll() {
     let (mut e, mut j) = engines(program(vec![endless(None)], vec![0; 16]));
-    e.interrupt().raise();
-    j.interrupt().raise();
-    let (a, b) = (e.run_func(0, 0, 0), j.run_func(0, 0, 0));
+    // The JIT compiled with a budget's bookkeeping polls as the interpreter.
+    let mut counted = Jit::new(program(vec![endless(None)], vec![0; 16])).unwrap();
+    counted.set_budget(u64::MAX - 1);
+    for flag in [e.interrupt(), j.interrupt(), counted.interrupt()] {
+        flag.raise();
+    }
+    let (a, b, c) = (
+        e.run_func(0, 0, 0),
+        j.run_func(0, 0, 0),
+        counted.run_func(0, 0, 0),
+    );
     is_interrupt(&a);
     is_interrupt(&b);
-    // Polled after POLL_INSTRUCTIONS (at the next loop header on the JIT).
-    for img in [e.image(), j.image()] {
+    is_interrupt(&c);
+    // Polled after POLL_INSTRUCTIONS (at the next loop header when counted).
+    for img in [e.image(), counted.image()] {
         let n = counter(img) as u64;
         assert!(n > 0 && n <= POLL_INSTRUCTIONS / 5 + 2, "{n}");
     }
+    // Without a budget the JIT tests the flag at every loop header: the
+    // loop stops before its first iteration.
+    assert_eq!(counter(j.image()), 0);
     // The engines never clear the flag themselves.
     assert!(e.interrupt().is_raised() && j.interrupt().is_raised());
     e.interrupt().clear();
@@ -183,25 +195,40 @@ fn a_flag_raised_by_another_thread_stops_the_run_in_progress() {
     is_interrupt(&j.run_func(0, 0, 0));
 }
 
+/// `[0] += 1; copy `len` bytes; [0] += 1; return`: no loop at all.
+fn straight_copy(len: u32) -> Func {
+    let mut f = endless(Some(len));
+    let bump = f.code[0..4].to_vec();
+    f.code.truncate(5);
+    f.code.extend(bump);
+    f.code.push(Inst::Ret);
+    f
+}
+
 #[test]
 fn a_long_copy_polls_the_flag_when_done() {
-    // Each iteration copies 1 MiB: with the flag raised the first copy is
-    // the last, long before a slice of instructions has run.
+    // One copy of 1 MiB is one long instruction: with the flag raised the
+    // run stops right after it, before the second increment.
     let len = 1 << 20;
-    let (mut e, mut j) = engines(program(
-        vec![endless(Some(len))],
-        vec![0; 8 + 2 * len as usize],
-    ));
+    let p = program(vec![straight_copy(len)], vec![0; 8 + 2 * len as usize]);
+    let (mut e, mut j) = engines(p.clone());
+    let mut counted = Jit::new(p).unwrap();
+    counted.set_budget(u64::MAX - 1);
+    for flag in [e.interrupt(), j.interrupt(), counted.interrupt()] {
+        flag.raise();
+    }
+    is_interrupt(&e.run_func(0, 0, 0));
+    is_interrupt(&j.run_func(0, 0, 0));
+    is_interrupt(&counted.run_func(0, 0, 0));
+    for img in [e.image(), j.image(), counted.image()] {
+        assert_eq!(counter(img), 1);
+    }
+    // A short copy does not poll: the run ends normally.
+    let (mut e, mut j) = engines(program(vec![straight_copy(64)], vec![0; 8 + 128]));
     e.interrupt().raise();
     j.interrupt().raise();
-    let (a, b) = (e.run_func(0, 0, 0), j.run_func(0, 0, 0));
-    is_interrupt(&a);
-    is_interrupt(&b);
-    assert_eq!(counter(e.image()), 1);
-    assert_eq!(counter(j.image()), 1);
-    // A short copy does not poll: the loop runs on to the next slice.
-    let (mut e, _) = engines(program(vec![endless(Some(64))], vec![0; 8 + 128]));
-    e.interrupt().raise();
-    is_interrupt(&e.run_func(0, 0, 0));
-    assert!(counter(e.image()) > 1);
+    assert_eq!(e.run_func(0, 0, 0), Ok(()));
+    assert_eq!(j.run_func(0, 0, 0), Ok(()));
+    assert_eq!(counter(e.image()), 2);
+    assert_eq!(counter(j.image()), 2);
 }
