@@ -31,8 +31,10 @@ use std::sync::Arc;
 ///
 /// With --cycles or --duration the run uses the virtual clock (scans back to
 /// back, PLC time of scan k exactly (k-1) x period) and stops by itself;
-/// otherwise it runs in real time until Ctrl-C, which stops at the end of
-/// the scan (RETAIN variables are saved).
+/// otherwise it runs in real time until Ctrl-C (or SIGTERM, SIGHUP), which
+/// stops at the end of the scan (RETAIN variables are saved); a scan still
+/// running a second later is stopped as a fault. Every task run is watched
+/// in wall time (--watchdog, `[tasks.NAME]`; see docs/watchdog.md).
 ///
 /// Exit codes: 0 ok, 1 the program does not compile, 2 bad command line
 /// (including an unknown variable in --print or --trace), 3 runtime fault
