@@ -26,6 +26,7 @@
 mod compile;
 mod emit;
 mod instances;
+mod locals;
 mod rt;
 mod translate;
 

@@ -84,6 +84,42 @@ pub(crate) struct Tx<'a, 'b> {
     pub inlined: usize,
     /// The instruction being translated (its index in `f`).
     pub pc: u32,
+    /// The variables block-local registers share (`locals.rs`).
+    pub pools: Pools,
+}
+
+/// Per register class, the variables shared by block-local registers:
+/// slot k of every block uses the k-th (`locals.rs` says why).
+#[derive(Default)]
+pub(crate) struct Pools([Vec<Variable>; 3]);
+
+impl Pools {
+    /// The variable of every register of `f`: a pool slot's when it is
+    /// block-local, else its own.
+    fn vars(&mut self, b: &mut FunctionBuilder<'_>, f: &Func) -> Vec<Variable> {
+        let slots = crate::locals::slots(f, &leaders(&f.code));
+        f.regs
+            .iter()
+            .zip(slots)
+            .map(|(c, slot)| {
+                let Some(k) = slot else {
+                    return b.declare_var(class_type(*c));
+                };
+                let [i, s, d] = &mut self.0;
+                let pool = match c {
+                    RegClass::I64 => i,
+                    RegClass::F32 => s,
+                    RegClass::F64 => d,
+                };
+                while pool.len() <= k as usize {
+                    pool.push(b.declare_var(class_type(*c)));
+                }
+                pool.get(k as usize)
+                    .copied()
+                    .unwrap_or_else(|| b.declare_var(class_type(*c)))
+            })
+            .collect()
+    }
 }
 
 /// Callees at most this long, without calls of their own, are inlined.
@@ -208,11 +244,8 @@ pub fn function(
     let (Some(&ctx), Some(&this)) = (params.first(), params.get(1)) else {
         return Err(JitError::Backend("function parameters".into()));
     };
-    let vars = f
-        .regs
-        .iter()
-        .map(|c| b.declare_var(class_type(*c)))
-        .collect();
+    let mut pools = Pools::default();
+    let vars = pools.vars(&mut b, f);
     let left = b.declare_var(types::I64);
     let image = b.ins().load(h.ptr, mem(), ctx, rt::OFF_IMAGE);
     let len = b.ins().load(types::I64, mem(), ctx, rt::OFF_LEN);
@@ -269,6 +302,7 @@ pub fn function(
         ret_to: None,
         inlined: 0,
         pc: 0,
+        pools,
     };
     tx.body()?;
     tx.b.seal_all_blocks();
@@ -556,11 +590,7 @@ impl<'a> Tx<'a, '_> {
         let call = self.b.create_block();
         self.b.ins().brif(ok, inline, &[], call, &[]);
         self.b.switch_to_block(inline);
-        let vars = g
-            .regs
-            .iter()
-            .map(|c| self.b.declare_var(class_type(*c)))
-            .collect();
+        let vars = self.pools.vars(&mut self.b, g);
         let saved = (
             std::mem::replace(&mut self.f, g),
             std::mem::replace(&mut self.index, index),
