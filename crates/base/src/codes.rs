@@ -235,7 +235,7 @@ codes! {
 
     // ---- projects, plants and scenarios (automat-project, automat-scenario) ----
     E300 => "invalid project file",
-        "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]` and `[bind]`.";
+        "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]`, `[bind]` and `[tasks.NAME]` (watchdog, sensitivity; NAME a task of the program, see docs/watchdog.md).";
     E301 => "unknown plant model",
         "`[plant] model` names no model of the plant library. The message lists every known model.";
     E302 => "unknown plant signal",

@@ -55,6 +55,9 @@ impl Executor for Probe {
         }
         self.inner.run_program(inst, now_ns)
     }
+    fn interrupt(&self) -> automat_ir::Interrupt {
+        self.inner.interrupt()
+    }
 }
 
 fn percentile(sorted: &[i64], p: f64) -> i64 {

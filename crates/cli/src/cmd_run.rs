@@ -34,7 +34,9 @@ use std::sync::Arc;
 /// back, PLC time of scan k exactly (k-1) x period) and stops by itself;
 /// otherwise it runs in real time until Ctrl-C, SIGTERM or SIGHUP, which
 /// stop at the end of the scan (outputs to their safe values, RETAIN
-/// variables saved).
+/// variables saved); a scan still running a second later is stopped as a
+/// fault. Every task run is watched in wall time (--watchdog,
+/// `[tasks.NAME]`; see docs/watchdog.md).
 ///
 /// Exit codes: 0 ok, 1 the program does not compile, 2 bad command line
 /// (including an unknown variable in --print or --trace, or a --retain
@@ -145,6 +147,18 @@ pub struct RunArgs {
     /// --listen: allow plain HTTP on a non-loopback address.
     #[arg(long, requires = "listen")]
     pub(crate) insecure: bool,
+    /// The watchdog of the implicit task (and of every task without
+    /// `[tasks.NAME] watchdog` in automat.toml): a run of the task longer
+    /// than TIME (`100ms`, `T#2s`) stops the PLC with a fault naming the
+    /// task and the line it was executing; `off` for none. Default: 10s of
+    /// wall time per run on the virtual clock, off in real time. See
+    /// docs/watchdog.md.
+    #[arg(long, value_name = "TIME|off", value_parser = automat_runtime::watchdog::parse_watchdog)]
+    pub(crate) watchdog: Option<automat_ir::TaskWatchdog>,
+    /// Fault a task run after N IR instructions (deterministic, for tests;
+    /// off by default).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub(crate) max_instructions: Option<u64>,
 }
 
 /// Splits `--trace` values on the commas that are not inside `[...]`, so
@@ -297,12 +311,14 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
         eprintln!("error: --cycle-time must be longer than 0");
         return Err(Outcome::BadInput);
     }
-    let program = compile(args)?;
+    let mut program = compile(args)?;
+    crate::engines::default_watchdog(&mut program, args.watchdog);
     let prints = places(&program, &args.print, "--print")?;
     let traced = trace_columns(&program, &split_trace(&args.trace))?;
     let safe = SafeState::of_program(&program);
     let retain = RetainCfg::of(args, None);
     let mut engine = crate::engines::build(program, args.engine);
+    engine.set_budget(args.max_instructions);
     retain_run::start(&mut engine, retain.as_ref(), args.cold)?;
 
     let mut trace = match &args.trace_file {

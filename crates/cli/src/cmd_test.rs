@@ -104,7 +104,12 @@ impl Runner {
             match automat_project::load(toml, map) {
                 Err(d) => Err(render::render_report(map, &d)),
                 Ok(p) => match build::compile(&p.sources, p.program.clone(), &p.libraries) {
-                    Ok((prog, _warnings)) => Ok((p, prog)),
+                    Ok((mut prog, _warnings)) => {
+                        match automat_project::tasks::apply(&p.tasks, &mut prog) {
+                            Ok(()) => Ok((p, prog)),
+                            Err(d) => Err(render::render_report(map, &d)),
+                        }
+                    }
                     Err(e) => Err(e.text),
                 },
             }

@@ -3,7 +3,7 @@
 //! interpreter, with a note on stderr, never a failure.
 
 use automat_engine::Engine;
-use automat_ir::{Fault, Program, ProgramInstance};
+use automat_ir::{Fault, Interrupt, Program, ProgramInstance, TaskWatchdog};
 use automat_jit::Jit;
 use automat_runtime::Executor;
 
@@ -22,6 +22,18 @@ pub enum Backend {
     Jit(Box<Jit>),
 }
 
+/// `--watchdog`: the watchdog of every task the project file left at its
+/// default (the implicit task of a program without a CONFIGURATION).
+pub fn default_watchdog(program: &mut Program, watchdog: Option<TaskWatchdog>) {
+    if let Some(w) = watchdog {
+        for t in &mut program.tasks {
+            if t.watchdog == TaskWatchdog::Default {
+                t.watchdog = w;
+            }
+        }
+    }
+}
+
 /// The backend of `kind` for `program`; falls back to the interpreter when
 /// the JIT refuses the program.
 pub fn build(program: Program, kind: EngineKind) -> Backend {
@@ -34,6 +46,18 @@ pub fn build(program: Program, kind: EngineKind) -> Backend {
                 Backend::Interp(Box::new(Engine::new(program)))
             }
         },
+    }
+}
+
+impl Backend {
+    /// `--max-instructions`: the deterministic instruction budget per run
+    /// (`None`: none).
+    pub fn set_budget(&mut self, instructions: Option<u64>) {
+        let n = instructions.unwrap_or(automat_engine::DEFAULT_BUDGET);
+        match self {
+            Backend::Interp(e) => e.set_budget(n),
+            Backend::Jit(j) => j.set_budget(n),
+        }
     }
 }
 
@@ -66,6 +90,12 @@ impl Executor for Backend {
         match self {
             Backend::Interp(e) => e.run_program(inst, now_ns),
             Backend::Jit(j) => j.run_program(inst, now_ns),
+        }
+    }
+    fn interrupt(&self) -> Interrupt {
+        match self {
+            Backend::Interp(e) => e.interrupt(),
+            Backend::Jit(j) => j.interrupt(),
         }
     }
 }

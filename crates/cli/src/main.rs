@@ -35,6 +35,7 @@ struct Cli {
 enum Command {
     Check(cmd_check::CheckArgs),
     Explain(cmd_explain::ExplainArgs),
+    // Boxed: by far the largest set of flags.
     Run(Box<cmd_run::RunArgs>),
     Test(cmd_test::TestArgs),
     Plot(plot::PlotArgs),

@@ -130,7 +130,7 @@ fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
     let program_name = args.program.clone().or(project.program.clone());
     let mut libraries = project.libraries.clone();
     libraries.extend(args.libs.iter().cloned());
-    let program = match build::compile(&project.sources, program_name, &libraries) {
+    let mut program = match build::compile(&project.sources, program_name, &libraries) {
         Ok((p, warnings)) => {
             eprint!("{warnings}");
             p
@@ -144,6 +144,8 @@ fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
             });
         }
     };
+    automat_project::tasks::apply(&project.tasks, &mut program).map_err(|d| fail(&map, &d))?;
+    crate::engines::default_watchdog(&mut program, args.watchdog);
     let plant = match project.new_plant() {
         Ok(Some(p)) => p,
         Ok(None) => {
@@ -250,6 +252,7 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
     // The RETAIN path is checked before anything starts (the live view included).
     let retain = RetainCfg::of(args, Some(&project.retain));
     let mut engine = crate::engines::build(program.clone(), args.engine);
+    engine.set_budget(args.max_instructions);
     retain_run::start(&mut engine, retain.as_ref(), args.cold)?;
     let live = (clock == ClockMode::RealTime)
         .then(|| Live::start(&program, Rc::clone(&sim), Arc::clone(&stop), args.speed));

@@ -4,6 +4,7 @@
 
 use crate::{builtins, fast, mem, Engine};
 use automat_ir::code::{Addr, Base, CheckKind, Cmp, FloatOp, Inst, IntOp, MemTy, ShiftOp};
+use automat_ir::interrupt::{POLL_COPY_BYTES, POLL_INSTRUCTIONS};
 use automat_ir::{Fault, FaultKind, Program, Site};
 
 #[derive(Clone, Copy, Debug)]
@@ -174,6 +175,18 @@ fn float<
     }
 }
 
+/// The fault of a raised [`automat_ir::Interrupt`], at the statement of
+/// `site` (the runtime replaces the message with the reason).
+pub fn interrupted(program: &Program, f: u32, site: Option<u32>) -> Fault {
+    fault(
+        program,
+        f,
+        site,
+        FaultKind::Watchdog,
+        automat_ir::interrupt::INTERRUPTED.to_string(),
+    )
+}
+
 pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fault> {
     let Engine {
         program,
@@ -183,6 +196,7 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
         stack,
         budget,
         decoded,
+        interrupt,
         ..
     } = engine;
     let program: &Program = program;
@@ -191,6 +205,10 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
     let mut this = this;
     let mut pc: u32 = 0;
     let mut left = *budget;
+    // The flag is polled when `left` falls to `mark`, every
+    // POLL_INSTRUCTIONS: the same compare the budget needs, so the poll is
+    // free and the budget's count stays exact.
+    let mut mark = left.saturating_sub(POLL_INSTRUCTIONS);
     let bad = |f: u32, what: String| fault(program, f, None, FaultKind::Function, what);
     let Some(mut code) = program.funcs.get(f as usize).map(|x| x.code.as_slice()) else {
         return Err(bad(f, format!("no function {f}")));
@@ -202,15 +220,21 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
         base: windows.get(f as usize).copied().unwrap_or(0) as usize,
     };
     loop {
-        if left == 0 {
+        if left <= mark {
             let site = program.funcs.get(f as usize).and_then(|x| x.stmt_site(pc));
-            return Err(fault(
-                program,
-                f,
-                site,
-                FaultKind::Watchdog,
-                format!("watchdog: more than {} instructions in one run", *budget),
-            ));
+            if left == 0 {
+                return Err(fault(
+                    program,
+                    f,
+                    site,
+                    FaultKind::Watchdog,
+                    format!("watchdog: more than {} instructions in one run", *budget),
+                ));
+            }
+            if interrupt.is_raised() {
+                return Err(interrupted(program, f, site));
+            }
+            mark = left.saturating_sub(POLL_INSTRUCTIONS);
         }
         left -= 1;
         if let Some(&op) = ops.0.get(pc as usize) {
@@ -273,6 +297,13 @@ pub fn run(engine: &mut Engine, func: u32, this: u32, now: i64) -> Result<(), Fa
                     ));
                 }
                 ctx.image.copy_within(s..s + n, d);
+                if len >= POLL_COPY_BYTES && interrupt.is_raised() {
+                    let site = program
+                        .funcs
+                        .get(f as usize)
+                        .and_then(|x| x.stmt_site(pc - 1));
+                    return Err(interrupted(program, f, site));
+                }
             }
             Inst::Int { op, dst, a, b } => {
                 let (x, y) = (ctx.i(a), ctx.i(b));

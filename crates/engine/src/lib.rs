@@ -10,7 +10,13 @@
 //!   conversion builtins), hash or look up names.
 //! - The program is verified in [`Engine::new`]; a program that fails
 //!   verification faults on every run instead of executing.
-//! - Every loop is bounded by the watchdog budget (instructions per run).
+//! - A run can be stopped from outside: the [`Interrupt`] flag
+//!   ([`Engine::interrupt`]) is polled every
+//!   [`automat_ir::interrupt::POLL_INSTRUCTIONS`] instructions, at no cost
+//!   of its own (the compare the budget needs anyway), and after long block
+//!   copies. The runtime's watchdog raises it.
+//! - An optional instruction budget per run (`set_budget`, off by default)
+//!   faults deterministically at an exact instruction, for tests.
 
 mod builtins;
 mod dates;
@@ -25,13 +31,14 @@ pub mod mem;
 /// standard functions over a register slice, and the fault constructors.
 pub mod shared {
     pub use crate::builtins::call as builtin;
-    pub use crate::interp::{check_range, fault, Ctx};
+    pub use crate::interp::{check_range, fault, interrupted, Ctx};
 }
 
-use automat_ir::{Fault, FaultKind, Program, ProgramInstance, Site};
+use automat_ir::{Fault, FaultKind, Interrupt, Program, ProgramInstance, Site};
 
-/// Default watchdog budget: instructions per `run_program`.
-pub const DEFAULT_BUDGET: u64 = 200_000_000;
+/// Default instruction budget per `run_program`: none (the watchdog in
+/// time, through the [`Interrupt`] flag, stops endless loops).
+pub const DEFAULT_BUDGET: u64 = u64::MAX;
 
 pub struct Engine {
     program: Program,
@@ -45,6 +52,8 @@ pub struct Engine {
     /// Return frames; capacity fixed at creation.
     stack: Vec<interp::Frame>,
     budget: u64,
+    /// Raised from outside to stop the run in progress.
+    interrupt: Interrupt,
     /// Why the program cannot run (failed verification).
     invalid: Option<String>,
 }
@@ -75,6 +84,7 @@ impl Engine {
             image,
             program,
             budget: DEFAULT_BUDGET,
+            interrupt: Interrupt::new(),
             invalid,
         }
     }
@@ -98,9 +108,18 @@ impl Engine {
         self.image.resize(self.program.image_size as usize, 0);
     }
 
-    /// The watchdog budget in instructions per run.
+    /// The instruction budget per run: a run executing more faults
+    /// (`FaultKind::Watchdog`) at exactly that instruction. `u64::MAX`
+    /// ([`DEFAULT_BUDGET`]) is no budget.
     pub fn set_budget(&mut self, instructions: u64) {
         self.budget = instructions.max(1);
+    }
+
+    /// The flag that stops the run in progress at its next poll (a fault
+    /// of kind `Watchdog` at the statement it was executing, message
+    /// [`automat_ir::interrupt::INTERRUPTED`]). The engine never clears it.
+    pub fn interrupt(&self) -> Interrupt {
+        self.interrupt.clone()
     }
 
     /// Runs one program instance once at PLC time `now_ns`. A fault leaves

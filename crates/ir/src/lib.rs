@@ -25,9 +25,11 @@
 //! instruction set lives in its own modules.
 
 pub mod code;
+pub mod interrupt;
 pub mod symbols;
 pub mod verify;
 
+pub use interrupt::Interrupt;
 pub use symbols::{Field, SymbolEntry, SymbolTable, SymbolType};
 
 use std::ops::Range;
@@ -107,6 +109,26 @@ pub struct TaskDef {
     pub single: Option<(u32, Option<u8>)>,
     /// Run in this order within the task.
     pub programs: Vec<ProgramInstance>,
+    /// How long a run of the task may take (set by the project file or
+    /// the command line after lowering; the runtime enforces it).
+    pub watchdog: TaskWatchdog,
+}
+
+/// A task's watchdog in wall-clock time (`[tasks.NAME] watchdog = "100ms"`
+/// and `sensitivity = n` in `automat.toml`, `--watchdog` for the implicit
+/// task). The runtime enforces it; `docs/watchdog.md` is the reference.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TaskWatchdog {
+    /// Nothing configured: the runtime's default for its clock (10 s per
+    /// run on the virtual clock, none in real time).
+    #[default]
+    Default,
+    /// No watchdog (`--watchdog off`).
+    Off,
+    /// A run longer than `time_ns` is an overrun; `sensitivity`
+    /// consecutive overruns fault, and so does a run still going after
+    /// `time_ns × sensitivity` (stopped where it is).
+    Limit { time_ns: i64, sensitivity: u32 },
 }
 
 /// A linked, executable program: code, memory layout, symbols, tasks.

@@ -58,6 +58,7 @@ fn module() -> Result<JITModule, JitError> {
     b.symbol("automat_jit_fault", rt::jit_fault as *const u8);
     b.symbol("automat_jit_builtin", rt::jit_builtin as *const u8);
     b.symbol("automat_jit_copy", rt::jit_copy as *const u8);
+    b.symbol("automat_jit_poll", rt::jit_poll as *const u8);
     Ok(JITModule::new(b))
 }
 
@@ -71,7 +72,10 @@ fn sig(m: &JITModule, params: &[types::Type], ret: bool) -> Signature {
 }
 
 /// Compiles all functions; `Err` if the backend refuses something.
-pub fn compile(program: &Program) -> Result<Compiled, JitError> {
+/// `counted`: with the instruction budget's bookkeeping (see
+/// `translate.rs`); `flag`: the address of the interrupt flag the code
+/// polls, alive as long as the code.
+pub fn compile(program: &Program, counted: bool, flag: i64) -> Result<Compiled, JitError> {
     let mut m = module()?;
     let ptr = m.target_config().pointer_type();
     let i64t = types::I64;
@@ -119,6 +123,14 @@ pub fn compile(program: &Program) -> Result<Compiled, JitError> {
         )
         .map_err(err)?;
 
+    let poll = m
+        .declare_function(
+            "automat_jit_poll",
+            Linkage::Import,
+            &sig(&m, &[ptr, i64t, i64t, i64t], true),
+        )
+        .map_err(err)?;
+
     let mut builtins = Vec::new();
     let mut ctx = m.make_context();
     let mut fctx = FunctionBuilderContext::new();
@@ -155,6 +167,9 @@ pub fn compile(program: &Program) -> Result<Compiled, JitError> {
                 fault: m.declare_func_in_func(fault, &mut ctx.func),
                 builtin: m.declare_func_in_func(builtin, &mut ctx.func),
                 copy: m.declare_func_in_func(copy, &mut ctx.func),
+                poll: m.declare_func_in_func(poll, &mut ctx.func),
+                counted,
+                flag,
                 callees: refs,
                 checked,
                 static_this: bounds.get(i).copied().flatten().is_some(),

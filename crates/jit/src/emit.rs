@@ -269,7 +269,7 @@ impl Tx<'_, '_> {
                 let d = self.offset(dst);
                 let s = self.offset(src);
                 let n = self.iconst(len as i64);
-                let func = self.iconst(self.index as i64);
+                let func = self.iconst(self.index as i64 | (self.pc as i64) << 32);
                 let call = self.b.ins().call(self.h.copy, &[self.ctx, func, d, s, n]);
                 let st = self.result(call)?;
                 self.propagate(st);

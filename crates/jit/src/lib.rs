@@ -13,8 +13,11 @@
 //!   (`emit.rs`). Checking instructions are compiled where the IR has them.
 //! - Faults: generated code calls a Rust helper that builds the same
 //!   [`Fault`] as the interpreter (through `automat_engine::shared`) and
-//!   returns status 1 up the native call chain. The watchdog counts
-//!   instructions exactly like the interpreter (`translate.rs`).
+//!   returns status 1 up the native call chain. The instruction budget
+//!   counts exactly like the interpreter (`translate.rs`); the interrupt
+//!   flag ([`Jit::interrupt`]) is polled at loop headers every
+//!   [`automat_ir::interrupt::POLL_INSTRUCTIONS`] (a load and a compare
+//!   per iteration, the call on a cold path) and after long copies.
 //! - Standard functions run in the interpreter's own implementation
 //!   (`automat_engine::shared::builtin`) through one helper.
 //! - [`Jit::new`] verifies the program and returns an error naming anything
@@ -23,11 +26,12 @@
 mod compile;
 mod emit;
 mod instances;
+mod locals;
 mod rt;
 mod translate;
 
 use automat_ir::code::Inst;
-use automat_ir::{Fault, FaultKind, Program, ProgramInstance, Site};
+use automat_ir::{Fault, FaultKind, Interrupt, Program, ProgramInstance, Site};
 use cranelift_jit::JITModule;
 
 /// Why a program cannot be compiled; the interpreter runs it instead.
@@ -58,6 +62,12 @@ pub struct Jit {
     program: Box<Program>,
     image: Vec<u8>,
     budget: u64,
+    /// Whether the code counts the budget: compiled so by the first
+    /// `set_budget` with a finite budget (the default code has no budget
+    /// bookkeeping at all, so it compiles and runs faster).
+    counted: bool,
+    /// Why that recompilation failed (every run then faults with it).
+    recompile_error: Option<JitError>,
     /// Native entry of every function the tasks can reach.
     entries: Vec<Option<compile::EntryFn>>,
     /// Per function: `Some(bound)` when compiled without its entry check
@@ -76,18 +86,22 @@ impl Jit {
             .map_err(|e| JitError::Invalid(e.to_string()))?;
         check_calls(&program)?;
         let program = Box::new(program);
-        let compiled = compile::compile(&program)?;
+        let interrupt = Interrupt::new();
+        let compiled = compile::compile(&program, false, interrupt.as_ptr() as i64)?;
         let mut image = program.initial_image.clone();
         image.resize(program.image_size as usize, 0);
         let shared = Box::new(rt::Shared {
             program: &*program,
             builtins: compiled.builtins,
             budget: automat_engine::DEFAULT_BUDGET,
+            interrupt,
         });
         Ok(Jit {
             program,
             image,
             budget: automat_engine::DEFAULT_BUDGET,
+            counted: false,
+            recompile_error: None,
             entries: compiled.entries,
             bounds: compiled.bounds,
             shared,
@@ -122,10 +136,42 @@ impl Jit {
         self.image.resize(self.program.image_size as usize, 0);
     }
 
-    /// The watchdog budget in instructions per run (as the interpreter's).
+    /// The instruction budget per run (as the interpreter's; `u64::MAX`,
+    /// the default, is none). The first finite budget recompiles the
+    /// program with the budget's bookkeeping (the image is kept).
     pub fn set_budget(&mut self, instructions: u64) {
         self.budget = instructions.max(1);
         self.shared.budget = self.budget;
+        if self.budget != u64::MAX && !self.counted {
+            self.counted = true;
+            let flag = self.shared.interrupt.as_ptr() as i64;
+            match compile::compile(&self.program, true, flag) {
+                Ok(c) => {
+                    self.free_code();
+                    self.entries = c.entries;
+                    self.bounds = c.bounds;
+                    self.shared.builtins = c.builtins;
+                    self.module = Some(c.module);
+                }
+                Err(e) => self.recompile_error = Some(e),
+            }
+        }
+    }
+
+    /// Frees the generated code (nothing may run it afterwards).
+    fn free_code(&mut self) {
+        if let Some(m) = self.module.take() {
+            self.entries.clear();
+            // SAFETY: the only pointers into the module's code are `entries`,
+            // cleared above; nothing runs generated code after this point.
+            unsafe { m.free_memory() };
+        }
+    }
+
+    /// The flag that stops the run in progress at its next poll (as the
+    /// interpreter's `Engine::interrupt`).
+    pub fn interrupt(&self) -> Interrupt {
+        self.shared.interrupt.clone()
     }
 
     /// Runs one program instance once at PLC time `now_ns`. A fault leaves
@@ -136,6 +182,16 @@ impl Jit {
 
     /// Runs any function with an instance base (for tests and tools).
     pub fn run_func(&mut self, func: u32, this: u32, now_ns: i64) -> Result<(), Fault> {
+        if let Some(e) = &self.recompile_error {
+            return Err(Fault {
+                kind: FaultKind::Function,
+                message: format!("cannot compile the program with an instruction budget: {e}"),
+                site: Site {
+                    pou: String::new(),
+                    location: String::new(),
+                },
+            });
+        }
         let Some(&Some(entry)) = self.entries.get(func as usize) else {
             return Err(Fault {
                 kind: FaultKind::Function,
@@ -168,12 +224,14 @@ impl Jit {
                 });
             }
         }
+        let left = self.budget.min(i64::MAX as u64) as i64;
         let mut ctx = rt::RunCtx {
             image: self.image.as_mut_ptr(),
             image_len: self.image.len() as u64,
-            left: self.budget.min(i64::MAX as u64) as i64,
+            left,
             now: now_ns,
             shared: &*self.shared,
+            mark: rt::first_mark(left),
             fault: None,
         };
         // SAFETY: `entry` was compiled from this program with the `EntryFn`
@@ -205,12 +263,7 @@ impl Jit {
 
 impl Drop for Jit {
     fn drop(&mut self) {
-        if let Some(m) = self.module.take() {
-            self.entries.clear();
-            // SAFETY: the only pointers into the module's code are `entries`,
-            // cleared above; nothing runs generated code after this point.
-            unsafe { m.free_memory() };
-        }
+        self.free_code();
     }
 }
 
@@ -287,5 +340,8 @@ impl automat_runtime::Executor for Jit {
     }
     fn run_program(&mut self, inst: &ProgramInstance, now_ns: i64) -> Result<(), Fault> {
         Jit::run_program(self, inst, now_ns)
+    }
+    fn interrupt(&self) -> Interrupt {
+        Jit::interrupt(self)
     }
 }

@@ -4,9 +4,10 @@
 //! faults and run builtins through `automat_engine::shared`, so messages and
 //! semantics exist once, in the interpreter.
 
-use automat_engine::shared::{builtin, check_range, fault, Ctx};
+use automat_engine::shared::{builtin, check_range, fault, interrupted, Ctx};
 use automat_ir::code::{Builtin, CheckKind, MemTy, Reg};
-use automat_ir::{Fault, FaultKind, Program};
+use automat_ir::interrupt::{POLL_COPY_BYTES, POLL_INSTRUCTIONS};
+use automat_ir::{Fault, FaultKind, Interrupt, Program};
 
 /// The state of one run. Generated code reads the first four fields at the
 /// offsets below (`#[repr(C)]` fixes them); the rest is for the helpers.
@@ -20,6 +21,9 @@ pub struct RunCtx {
     /// The scan time in ns (`Inst::Now`).
     pub now: i64,
     pub shared: *const Shared,
+    /// Loop headers poll the interrupt flag ([`jit_poll`]) when `left`
+    /// falls below this.
+    pub mark: i64,
     /// The fault a helper recorded before generated code returned status 1.
     pub fault: Option<Fault>,
 }
@@ -28,6 +32,7 @@ pub const OFF_IMAGE: i32 = std::mem::offset_of!(RunCtx, image) as i32;
 pub const OFF_LEN: i32 = std::mem::offset_of!(RunCtx, image_len) as i32;
 pub const OFF_LEFT: i32 = std::mem::offset_of!(RunCtx, left) as i32;
 pub const OFF_NOW: i32 = std::mem::offset_of!(RunCtx, now) as i32;
+pub const OFF_MARK: i32 = std::mem::offset_of!(RunCtx, mark) as i32;
 
 /// One `Inst::Builtin` of the program, numbered in compile order; generated
 /// code passes the number and a slot array holding the argument registers
@@ -47,6 +52,44 @@ pub struct Shared {
     pub program: *const Program,
     pub builtins: Vec<BuiltinCall>,
     pub budget: u64,
+    /// Raised from outside to stop the run (polled by [`jit_poll`] and
+    /// after long copies).
+    pub interrupt: Interrupt,
+}
+
+/// The first poll mark of a run with `left` instructions of budget.
+pub fn first_mark(left: i64) -> i64 {
+    left.saturating_sub(POLL_INSTRUCTIONS as i64)
+}
+
+/// Called at a loop header when the budget `left` has fallen below
+/// `RunCtx::mark`: returns 1 with the fault recorded when the interrupt
+/// flag is raised (the site is the header's statement: `pc` of function
+/// `func`), else sets the next mark and returns 0.
+///
+/// # Safety
+/// `ctx` as for [`jit_fault`].
+pub unsafe extern "C" fn jit_poll(ctx: *mut RunCtx, left: i64, func: i64, pc: i64) -> i32 {
+    // SAFETY: see the function's contract.
+    let ctx = unsafe { &mut *ctx };
+    // SAFETY: `shared` and its program outlive the run (owned by the Jit).
+    let shared = unsafe { &*ctx.shared };
+    if shared.interrupt.is_raised() {
+        let program = unsafe { &*shared.program };
+        ctx.fault = Some(interrupt_fault(program, func, pc));
+        return 1;
+    }
+    ctx.mark = first_mark(left);
+    0
+}
+
+fn interrupt_fault(program: &Program, func: i64, pc: i64) -> Fault {
+    let f = func as u32;
+    let site = program
+        .funcs
+        .get(f as usize)
+        .and_then(|x| x.stmt_site(pc as u32));
+    interrupted(program, f, site)
 }
 
 /// Fault kinds passed to [`jit_fault`] (`kind` argument).
@@ -225,6 +268,9 @@ pub unsafe extern "C" fn jit_builtin(ctx: *mut RunCtx, index: i64, slots: *mut u
 
 /// `Inst::Copy`: memmove of `len` bytes inside the image, or the
 /// interpreter's fault when either range leaves it. Returns 0 or 1.
+/// `func` holds the function index in its low 32 bits and the copy's pc
+/// in the high ones: a long copy polls the interrupt flag when done, and
+/// its fault names the copy's statement.
 ///
 /// # Safety
 /// `ctx` as for [`jit_fault`].
@@ -253,5 +299,11 @@ pub unsafe extern "C" fn jit_copy(
         return 1;
     }
     image.copy_within(s..s + n, d);
+    let shared = unsafe { &*ctx.shared };
+    if len >= i64::from(POLL_COPY_BYTES) && shared.interrupt.is_raised() {
+        let program = unsafe { &*shared.program };
+        ctx.fault = Some(interrupt_fault(program, func & 0xFFFF_FFFF, func >> 32));
+        return 1;
+    }
     0
 }

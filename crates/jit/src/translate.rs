@@ -12,6 +12,17 @@
 //! exactly the same stores and with any earlier fault of the block first.
 //! The budget lives in a variable and is written back to the context only
 //! around calls and returns.
+//!
+//! All of this only in code compiled with a budget (`Helpers::counted`);
+//! without one (the default) there is no bookkeeping at all.
+//!
+//! # The interrupt flag
+//! Loop headers (targets of backward jumps) poll it: counted code when the
+//! budget reaches `RunCtx::mark` (every `POLL_INSTRUCTIONS`), uncounted
+//! code by loading the flag each iteration; a raised flag calls
+//! `rt::jit_poll` on a cold path, which records the fault. `rt::jit_copy`
+//! polls after long copies. Straight-line code needs no poll: without
+//! recursion, only loops run long.
 
 use crate::rt::{self, BuiltinCall, RunCtx};
 use crate::JitError;
@@ -27,6 +38,16 @@ pub struct Helpers {
     pub fault: FuncRef,
     pub builtin: FuncRef,
     pub copy: FuncRef,
+    /// `rt::jit_poll`: the interrupt flag, polled at loop headers.
+    pub poll: FuncRef,
+    /// Whether the code counts the instruction budget (compiled so only
+    /// when a finite budget is set): blocks charge their length, loop
+    /// headers poll when the budget reaches `RunCtx::mark`. Without it
+    /// there is no budget bookkeeping at all and loop headers test the
+    /// interrupt flag itself, at `flag`.
+    pub counted: bool,
+    /// The address of the interrupt flag (an `AtomicBool` the `Jit` owns).
+    pub flag: i64,
     /// (IR function index, reference) of every callee.
     pub callees: Vec<(u32, FuncRef)>,
     /// For the fast variant of a function with `This` accesses: the
@@ -61,6 +82,44 @@ pub(crate) struct Tx<'a, 'b> {
     pub ret_to: Option<cranelift_codegen::ir::Block>,
     /// Instructions inlined so far into this function (bounded).
     pub inlined: usize,
+    /// The instruction being translated (its index in `f`).
+    pub pc: u32,
+    /// The variables block-local registers share (`locals.rs`).
+    pub pools: Pools,
+}
+
+/// Per register class, the variables shared by block-local registers:
+/// slot k of every block uses the k-th (`locals.rs` says why).
+#[derive(Default)]
+pub(crate) struct Pools([Vec<Variable>; 3]);
+
+impl Pools {
+    /// The variable of every register of `f`: a pool slot's when it is
+    /// block-local, else its own.
+    fn vars(&mut self, b: &mut FunctionBuilder<'_>, f: &Func) -> Vec<Variable> {
+        let slots = crate::locals::slots(f, &leaders(&f.code));
+        f.regs
+            .iter()
+            .zip(slots)
+            .map(|(c, slot)| {
+                let Some(k) = slot else {
+                    return b.declare_var(class_type(*c));
+                };
+                let [i, s, d] = &mut self.0;
+                let pool = match c {
+                    RegClass::I64 => i,
+                    RegClass::F32 => s,
+                    RegClass::F64 => d,
+                };
+                while pool.len() <= k as usize {
+                    pool.push(b.declare_var(class_type(*c)));
+                }
+                pool.get(k as usize)
+                    .copied()
+                    .unwrap_or_else(|| b.declare_var(class_type(*c)))
+            })
+            .collect()
+    }
 }
 
 /// Callees at most this long, without calls of their own, are inlined.
@@ -143,6 +202,27 @@ fn leaders(code: &[Inst]) -> Vec<bool> {
     l
 }
 
+/// Instruction indexes that a jump or branch at or after them targets:
+/// the headers of every loop, where the interrupt flag is polled.
+fn loop_headers(code: &[Inst]) -> Vec<bool> {
+    let mut h = vec![false; code.len() + 1];
+    for (pc, inst) in code.iter().enumerate() {
+        let targets = match *inst {
+            Inst::Jump { target } => [Some(target), None],
+            Inst::Branch { then, els, .. } => [Some(then), Some(els)],
+            _ => [None, None],
+        };
+        for t in targets.into_iter().flatten() {
+            if (t as usize) <= pc {
+                if let Some(x) = h.get_mut(t as usize) {
+                    *x = true;
+                }
+            }
+        }
+    }
+    h
+}
+
 fn is_terminator(inst: &Inst) -> bool {
     matches!(inst, Inst::Jump { .. } | Inst::Branch { .. } | Inst::Ret)
 }
@@ -164,11 +244,8 @@ pub fn function(
     let (Some(&ctx), Some(&this)) = (params.first(), params.get(1)) else {
         return Err(JitError::Backend("function parameters".into()));
     };
-    let vars = f
-        .regs
-        .iter()
-        .map(|c| b.declare_var(class_type(*c)))
-        .collect();
+    let mut pools = Pools::default();
+    let vars = pools.vars(&mut b, f);
     let left = b.declare_var(types::I64);
     let image = b.ins().load(h.ptr, mem(), ctx, rt::OFF_IMAGE);
     let len = b.ins().load(types::I64, mem(), ctx, rt::OFF_LEN);
@@ -224,6 +301,8 @@ pub fn function(
         funcs,
         ret_to: None,
         inlined: 0,
+        pc: 0,
+        pools,
     };
     tx.body()?;
     tx.b.seal_all_blocks();
@@ -287,6 +366,9 @@ impl Tx<'_, '_> {
     }
 
     fn store_left(&mut self) {
+        if !self.h.counted {
+            return;
+        }
         let l = self.b.use_var(self.left);
         self.b.ins().store(mem(), l, self.ctx, rt::OFF_LEFT);
     }
@@ -294,6 +376,7 @@ impl Tx<'_, '_> {
     fn body(&mut self) -> Result<(), JitError> {
         let code = &self.f.code;
         let lead = leaders(code);
+        let headers = loop_headers(code);
         let mut blocks = Vec::with_capacity(code.len());
         for &is in lead.iter().take(code.len()) {
             blocks.push(is.then(|| self.b.create_block()));
@@ -311,12 +394,16 @@ impl Tx<'_, '_> {
                 return Err(JitError::Backend("block map".into()));
             };
             self.b.switch_to_block(block);
+            if headers.get(start).copied().unwrap_or(false) {
+                self.poll(start)?;
+            }
             self.charge(start, end)?;
             for pc in start..end {
                 let inst = code
                     .get(pc)
                     .copied()
                     .ok_or_else(|| JitError::Backend("pc".into()))?;
+                self.pc = pc as u32;
                 self.control(&inst, pc as u32, &block_at)?;
             }
             if !code.get(end - 1).is_some_and(is_terminator) {
@@ -329,9 +416,49 @@ impl Tx<'_, '_> {
         Ok(())
     }
 
+    /// At a loop header (`pc`, the target of a backward jump): when the
+    /// budget has fallen to `RunCtx::mark` (every `POLL_INSTRUCTIONS`),
+    /// the cold path calls `rt::jit_poll`, which faults if the interrupt
+    /// flag is raised and sets the next mark. Every endless run passes a
+    /// loop header (no recursion), so this is the only poll needed; it
+    /// costs one load and compare per loop iteration.
+    fn poll(&mut self, pc: usize) -> Result<(), JitError> {
+        let (l, due) = if self.h.counted {
+            let l = self.b.use_var(self.left);
+            let mark = self.b.ins().load(types::I64, mem(), self.ctx, rt::OFF_MARK);
+            (l, self.b.ins().icmp(IntCC::SignedLessThan, l, mark))
+        } else {
+            // The flag itself: one byte load per iteration (an AtomicBool
+            // is a byte; a relaxed load is a plain load on every host).
+            let at = self.iconst(self.h.flag);
+            let v = self.b.ins().load(types::I8, mem(), at, 0);
+            (self.iconst(0), v)
+        };
+        let slow = self.b.create_block();
+        let cont = self.b.create_block();
+        self.b.set_cold_block(slow);
+        self.b.ins().brif(due, slow, &[], cont, &[]);
+        self.b.switch_to_block(slow);
+        let (fv, pv) = (self.iconst(self.index as i64), self.iconst(pc as i64));
+        let call = self.b.ins().call(self.h.poll, &[self.ctx, l, fv, pv]);
+        let status = self
+            .b
+            .inst_results(call)
+            .first()
+            .copied()
+            .ok_or_else(|| JitError::Backend("poll result".into()))?;
+        self.propagate(status);
+        self.b.ins().jump(cont, &[]);
+        self.b.switch_to_block(cont);
+        Ok(())
+    }
+
     /// Charges the block `start..end` to the budget on entry; when it does
     /// not cover the block, runs the counting copy (which ends in a fault).
     fn charge(&mut self, start: usize, end: usize) -> Result<(), JitError> {
+        if !self.h.counted {
+            return Ok(());
+        }
         let n = (end - start) as i64;
         let l = self.b.use_var(self.left);
         let l2 = self.b.ins().iadd_imm_s(l, -n);
@@ -355,6 +482,7 @@ impl Tx<'_, '_> {
                 .copied()
                 .ok_or_else(|| JitError::Backend("pc".into()))?;
             if !is_terminator(&inst) && !matches!(inst, Inst::Call { .. }) {
+                self.pc = pc as u32;
                 self.emit(&inst)?;
             }
         }
@@ -426,8 +554,10 @@ impl Tx<'_, '_> {
                     .copied()
                     .ok_or_else(|| JitError::Backend("call result".into()))?;
                 self.propagate(status);
-                let l = self.b.ins().load(types::I64, mem(), self.ctx, rt::OFF_LEFT);
-                self.b.def_var(self.left, l);
+                if self.h.counted {
+                    let l = self.b.ins().load(types::I64, mem(), self.ctx, rt::OFF_LEFT);
+                    self.b.def_var(self.left, l);
+                }
                 self.b.ins().jump(cont, &[]);
                 self.b.switch_to_block(cont);
             }
@@ -460,11 +590,7 @@ impl<'a> Tx<'a, '_> {
         let call = self.b.create_block();
         self.b.ins().brif(ok, inline, &[], call, &[]);
         self.b.switch_to_block(inline);
-        let vars = g
-            .regs
-            .iter()
-            .map(|c| self.b.declare_var(class_type(*c)))
-            .collect();
+        let vars = self.pools.vars(&mut self.b, g);
         let saved = (
             std::mem::replace(&mut self.f, g),
             std::mem::replace(&mut self.index, index),
@@ -474,7 +600,9 @@ impl<'a> Tx<'a, '_> {
             self.ret_to.replace(cont),
         );
         self.inlined += g.code.len();
+        let pc = self.pc;
         let r = self.body();
+        self.pc = pc;
         (
             self.f,
             self.index,

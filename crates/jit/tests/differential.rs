@@ -3,6 +3,9 @@
 //! front-end corpus (`tests/corpus/valid`) runs on the interpreter and on
 //! the JIT; the whole image after every scan, the way the run ended (fault
 //! kind, message and site included) and the final image must be identical.
+//! A case stopped by its watchdog in time (`watchdog:`) stops wherever the
+//! timer finds it: there the fault's kind, message and source line and the
+//! images of the scans before must be identical.
 
 mod common;
 
@@ -39,6 +42,7 @@ struct Header {
     cycle_time_ns: i64,
     program: Option<String>,
     budget: Option<u64>,
+    watchdog: Option<automat_ir::TaskWatchdog>,
 }
 
 fn header(text: &str) -> Header {
@@ -47,6 +51,7 @@ fn header(text: &str) -> Header {
         cycle_time_ns: 10_000_000,
         program: None,
         budget: None,
+        watchdog: None,
     };
     let body = text
         .trim_start()
@@ -66,6 +71,7 @@ fn header(text: &str) -> Header {
             }
             "program" => h.program = Some(v.to_string()),
             "budget" => h.budget = v.parse().ok(),
+            "watchdog" => h.watchdog = automat_runtime::watchdog::parse_watchdog(v).ok(),
             _ => {}
         }
     }
@@ -75,15 +81,25 @@ fn header(text: &str) -> Header {
 #[test]
 fn conformance_cases_agree() {
     let dir = root().join("tests/conformance");
-    let (mut ran, mut failed) = (0, Vec::new());
+    let (mut ran, mut timed, mut failed) = (0, 0, Vec::new());
     for (name, text) in st_files(&dir) {
         let spec = header(&text);
-        let Ok(program) = common::compile(&[(name.clone(), text)], spec.program.as_deref()) else {
+        let Ok(mut program) = common::compile(&[(name.clone(), text)], spec.program.as_deref())
+        else {
             continue; // pending cases that do not compile yet
         };
         ran += 1;
-        if let Err(e) = common::differential(program, spec.cycles, spec.cycle_time_ns, spec.budget)
-        {
+        let result = match spec.watchdog {
+            Some(w) => {
+                timed += 1;
+                for t in &mut program.tasks {
+                    t.watchdog = w;
+                }
+                common::differential_timed(program, spec.cycles, spec.cycle_time_ns)
+            }
+            None => common::differential(program, spec.cycles, spec.cycle_time_ns, spec.budget),
+        };
+        if let Err(e) = result {
             failed.push(format!("{name}: {e}"));
         }
     }
@@ -91,10 +107,11 @@ fn conformance_cases_agree() {
         eprintln!("DIFFERS {f}");
     }
     eprintln!(
-        "differential: {ran} conformance cases, {} differ",
+        "differential: {ran} conformance cases ({timed} stopped by a watchdog in time), {} differ",
         failed.len()
     );
     assert!(ran >= 70, "only {ran} cases ran");
+    assert!(timed >= 2, "only {timed} watchdog-in-time cases ran");
     assert!(failed.is_empty(), "{} cases differ", failed.len());
 }
 

@@ -107,6 +107,7 @@ pub fn task_defs(cx: &Cx, insts: &[Inst], offsets: &[u32]) -> Vec<TaskDef> {
                         .and_then(|s| cx.globals.get(&s))
                         .map(|g| (g.0, g.1)),
                     programs: Vec::new(),
+                    watchdog: Default::default(),
                 });
             }
         }
@@ -131,6 +132,7 @@ pub fn task_defs(cx: &Cx, insts: &[Inst], offsets: &[u32]) -> Vec<TaskDef> {
                     priority: 0,
                     single: None,
                     programs: vec![pi(i, *off)],
+                    watchdog: Default::default(),
                 });
             }
         }

@@ -46,4 +46,7 @@ impl<E: Executor> Executor for PlantExec<E> {
         }
         self.inner.run_program(inst, now_ns)
     }
+    fn interrupt(&self) -> automat_ir::Interrupt {
+        self.inner.interrupt()
+    }
 }

@@ -27,6 +27,9 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
+use crate::tasks::TaskSpec;
+use automat_ir::TaskWatchdog;
+
 /// The project file's name.
 pub const FILE_NAME: &str = "automat.toml";
 
@@ -45,6 +48,15 @@ struct RawFile {
     safe_state: BTreeMap<Spanned<String>, toml::Value>,
     #[serde(default)]
     users: BTreeMap<String, RawUser>,
+    #[serde(default)]
+    tasks: BTreeMap<Spanned<String>, RawTask>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTask {
+    watchdog: Option<Spanned<String>>,
+    sensitivity: Option<Spanned<i64>>,
 }
 
 #[derive(Deserialize)]
@@ -164,6 +176,8 @@ pub struct Project {
     /// `[safe_state]`, in the file's key order.
     pub safe_state: Vec<SafeSpec>,
     pub users: Vec<UserSpec>,
+    /// `[tasks.NAME]` tables, applied with [`crate::tasks::apply`].
+    pub tasks: Vec<TaskSpec>,
 }
 
 impl Project {
@@ -338,6 +352,11 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
             password_hash: u.password,
         });
     }
+    let tasks = raw
+        .tasks
+        .into_iter()
+        .map(|(name, t)| task_spec(file, name, t, &mut errors))
+        .collect();
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -351,6 +370,7 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
         cycle_time_ns,
         libraries: raw.project.libraries,
         plant,
+        tasks,
         retain,
         safe_state,
         users,
@@ -423,6 +443,56 @@ fn safe_values(
         value: text,
         span,
     });
+}
+
+/// One `[tasks.NAME]` table checked: `watchdog` a duration > 0 or `off`,
+/// `sensitivity` ≥ 1 and only with a watchdog time.
+fn task_spec(
+    file: FileId,
+    name: Spanned<String>,
+    t: RawTask,
+    errors: &mut Vec<Diagnostic>,
+) -> TaskSpec {
+    let name_span = span_of(file, name.span());
+    let name = name.into_inner();
+    let mut watchdog = TaskWatchdog::Default;
+    if let Some(w) = &t.watchdog {
+        match automat_runtime::watchdog::parse_watchdog(w.get_ref()) {
+            Ok(v) => watchdog = v,
+            Err(e) => errors.push(Diagnostic::error(
+                Code::E300,
+                span_of(file, w.span()),
+                format!("[tasks.{name}] watchdog: {e}"),
+            )),
+        }
+    }
+    if let Some(s) = &t.sensitivity {
+        let span = span_of(file, s.span());
+        let failed = t.watchdog.is_some() && watchdog == TaskWatchdog::Default;
+        match (u32::try_from(*s.get_ref()).ok().filter(|n| *n >= 1), &mut watchdog) {
+            (Some(n), TaskWatchdog::Limit { sensitivity, .. }) => *sensitivity = n,
+            // The watchdog itself was refused above.
+            (Some(_), _) if failed => {}
+            (Some(_), _) => errors.push(Diagnostic::error(
+                Code::E300,
+                span,
+                format!("[tasks.{name}] sensitivity needs a watchdog time (`watchdog = \"100ms\"`)"),
+            )),
+            (None, _) => errors.push(Diagnostic::error(
+                Code::E300,
+                span,
+                format!(
+                    "[tasks.{name}] sensitivity must be a whole number of consecutive overruns, 1 or more (not {})",
+                    s.get_ref()
+                ),
+            )),
+        }
+    }
+    TaskSpec {
+        name,
+        name_span,
+        watchdog,
+    }
 }
 
 fn is_st(p: &Path) -> bool {

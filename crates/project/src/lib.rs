@@ -2,7 +2,7 @@
 //! sources and a virtual plant bound to the program.
 //!
 //! - [`file`]: the project file (`[project]`, `[plant]`, `[plant.params]`,
-//!   `[bind]`, `[retain]`, `[safe_state]`) with `file:line:col` diagnostics (E300–E308).
+//!   `[bind]`, `[retain]`, `[safe_state]`, `[tasks.NAME]`) with `file:line:col` diagnostics (E300–E308).
 //! - [`bind`]: signals → PLC variables, checked at load.
 //! - [`image`]: plant values in and out of the memory image.
 //! - [`sim`]: the coupling of the model to the scan, with overrides
@@ -11,6 +11,8 @@
 //! - [`steps`]: the active steps of the program's charts (live view).
 //! - [`safe`]: the safe state of a run (outputs, actuator bindings,
 //!   `[safe_state]` values).
+//! - [`tasks`]: `[tasks.NAME]` settings (the watchdog) applied to the
+//!   program's tasks.
 //!
 //! The contract the plant models follow is in `crates/plant/README.md`.
 
@@ -22,6 +24,7 @@ pub mod image;
 pub mod safe;
 pub mod sim;
 pub mod steps;
+pub mod tasks;
 
 pub use bind::{bind, Binding};
 pub use exec::PlantExec;

@@ -2,7 +2,7 @@
 
 use crate::executor::Executor;
 use automat_engine::Engine;
-use automat_ir::{Fault, Program, ProgramInstance};
+use automat_ir::{Fault, Interrupt, Program, ProgramInstance};
 
 impl Executor for Engine {
     fn program(&self) -> &Program {
@@ -19,5 +19,8 @@ impl Executor for Engine {
     }
     fn run_program(&mut self, inst: &ProgramInstance, now_ns: i64) -> Result<(), Fault> {
         Engine::run_program(self, inst, now_ns)
+    }
+    fn interrupt(&self) -> Interrupt {
+        Engine::interrupt(self)
     }
 }

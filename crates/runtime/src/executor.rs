@@ -2,7 +2,7 @@
 //! native code later): the runtime only needs the program's layout, the
 //! image and a way to run one program instance at a given PLC time.
 
-use automat_ir::{Fault, Program, ProgramInstance};
+use automat_ir::{Fault, Interrupt, Program, ProgramInstance};
 
 /// A backend executing a linked [`Program`] over its memory image.
 pub trait Executor {
@@ -15,4 +15,9 @@ pub trait Executor {
     /// image is left as it was at the fault; the runtime applies the safe
     /// state.
     fn run_program(&mut self, inst: &ProgramInstance, now_ns: i64) -> Result<(), Fault>;
+    /// The backend's interrupt flag: once raised, the run in progress
+    /// faults at its next poll (inside loops too) with the message
+    /// [`automat_ir::interrupt::INTERRUPTED`]. The runtime's watchdog
+    /// raises it; a wrapper returns the flag of the backend it wraps.
+    fn interrupt(&self) -> Interrupt;
 }

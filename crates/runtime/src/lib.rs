@@ -25,6 +25,9 @@
 //! - [`value`]: reading a value at such a place.
 //! - [`trace`]: one CSV row per scan.
 //! - [`timearg`]: `10ms` / `T#10ms` command-line durations.
+//! - [`watchdog`]: the watchdog in wall time (a timer thread raising the
+//!   backend's interrupt flag); the one part of the loop that reads a
+//!   clock of its own, because a virtual-clock run needs a wall-time limit.
 
 pub mod clock;
 mod crc;
@@ -40,6 +43,7 @@ pub mod stats;
 pub mod timearg;
 pub mod trace;
 pub mod value;
+pub mod watchdog;
 
 #[cfg(test)]
 mod testutil;

@@ -16,6 +16,14 @@
 //!
 //! A run that reaches its limit (`--cycles`, `--duration`) ends as it is:
 //! the image is the end of its last scan, for printing and checking.
+//!
+//! The watchdog (`watchdog.rs`, wall time, a thread for the run) is armed
+//! around every task run with the task's [`TaskWatchdog`]: a run still
+//! going after its time × sensitivity is interrupted where it is, and
+//! `sensitivity` consecutive runs longer than its time fault after the
+//! last; a stop request during a long scan interrupts it within a second.
+//! Both are faults of kind `Watchdog` whose message names the task and the
+//! time.
 
 use crate::clock::{ClockMode, Monotonic};
 use crate::executor::Executor;
@@ -23,7 +31,8 @@ use crate::io::{InputSource, OutputSink};
 use crate::safe::SafeState;
 use crate::schedule::Schedule;
 use crate::stats::Stats;
-use automat_ir::{Fault, TaskDef};
+use crate::watchdog::{Cause, Watchdog, STOP_WITHIN_NS};
+use automat_ir::{Fault, FaultKind, Site, TaskDef, TaskWatchdog};
 use std::fmt;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -129,6 +138,123 @@ fn usize_range(r: &Range<u32>) -> Option<Range<usize>> {
     Some(usize::try_from(r.start).ok()?..usize::try_from(r.end).ok()?)
 }
 
+/// The watchdog time of a task run on the virtual clock when nothing is
+/// configured: far above any legitimate scan, short enough to end a test.
+pub const VIRTUAL_DEFAULT_WATCHDOG_NS: i64 = 10_000_000_000;
+
+/// A task's watchdog as this run applies it (`None`: off).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct TaskDog {
+    time_ns: i64,
+    sensitivity: u32,
+    /// The virtual clock's default, not configured.
+    default: bool,
+}
+
+fn task_dog(w: TaskWatchdog, clock: ClockMode) -> Option<TaskDog> {
+    match (w, clock) {
+        (TaskWatchdog::Default, ClockMode::Virtual) => Some(TaskDog {
+            time_ns: VIRTUAL_DEFAULT_WATCHDOG_NS,
+            sensitivity: 1,
+            default: true,
+        }),
+        (TaskWatchdog::Default, ClockMode::RealTime) | (TaskWatchdog::Off, _) => None,
+        (
+            TaskWatchdog::Limit {
+                time_ns,
+                sensitivity,
+            },
+            _,
+        ) => Some(TaskDog {
+            time_ns,
+            sensitivity: sensitivity.max(1),
+            default: false,
+        }),
+    }
+}
+
+fn dur(ns: i64) -> String {
+    automat_iec::format::format_duration(ns, false)
+}
+
+impl TaskDog {
+    /// How long one run may go on before it is interrupted.
+    fn limit_ns(&self) -> i64 {
+        self.time_ns.saturating_mul(i64::from(self.sensitivity))
+    }
+
+    /// What the watchdog says when it interrupts a run of `task`.
+    fn interrupted(&self, task: &str) -> String {
+        if self.default {
+            format!(
+                "watchdog: task {task} ran longer than {} of wall time (the default watchdog of a \
+                 virtual-clock run; set `[tasks.{task}] watchdog` or --watchdog)",
+                dur(self.time_ns)
+            )
+        } else if self.sensitivity > 1 {
+            format!(
+                "watchdog: task {task} ran longer than {} (its watchdog {} × sensitivity {})",
+                dur(self.limit_ns()),
+                dur(self.time_ns),
+                self.sensitivity
+            )
+        } else {
+            format!(
+                "watchdog: task {task} ran longer than its watchdog {}",
+                dur(self.time_ns)
+            )
+        }
+    }
+}
+
+/// After a completed run of `task` that took `wall_ns`: counts an overrun
+/// of its watchdog time in `row`, and faults on the `sensitivity`-th in a
+/// row (a fault with no source line: the run had ended).
+fn count_overrun(
+    row: &mut u32,
+    d: TaskDog,
+    wall_ns: i64,
+    task: &TaskDef,
+) -> Option<(Fault, String)> {
+    if wall_ns <= d.time_ns {
+        *row = 0;
+        return None;
+    }
+    *row += 1;
+    if *row < d.sensitivity {
+        return None;
+    }
+    let instance = task
+        .programs
+        .last()
+        .map_or(String::new(), |p| p.name.clone());
+    let message = if d.sensitivity > 1 {
+        format!(
+            "watchdog: task {} overran its watchdog {} in {} consecutive runs (the last took {})",
+            task.name,
+            dur(d.time_ns),
+            d.sensitivity,
+            dur(wall_ns)
+        )
+    } else {
+        format!(
+            "watchdog: task {} took {}, longer than its watchdog {}",
+            task.name,
+            dur(wall_ns),
+            dur(d.time_ns)
+        )
+    };
+    let fault = Fault {
+        kind: FaultKind::Watchdog,
+        message,
+        site: Site {
+            pou: instance.clone(),
+            location: "(end of the run)".into(),
+        },
+    };
+    Some((fault, instance))
+}
+
 struct Loop<'a, 'e, E: Executor> {
     exec: &'a mut E,
     env: &'a mut Env<'e>,
@@ -141,6 +267,10 @@ struct Loop<'a, 'e, E: Executor> {
     ticks: u64,
     last_scan_ns: Option<i64>,
     safe: &'a SafeState,
+    watchdog: Watchdog,
+    /// Per task: its watchdog in this run, and its overruns in a row.
+    dogs: Vec<Option<TaskDog>>,
+    overruns_in_row: Vec<u32>,
 }
 
 /// Runs the program of `exec` (whose image is already cold- or
@@ -166,6 +296,13 @@ pub fn run_safe<E: Executor>(
     let output = usize_range(&program.areas.output);
     let sched = Schedule::new(&tasks, cfg.cycle_time_ns)?;
     let due = Vec::with_capacity(tasks.len());
+    let dogs = tasks
+        .iter()
+        .map(|t| task_dog(t.watchdog, cfg.clock))
+        .collect();
+    let overruns_in_row = vec![0; tasks.len()];
+    let watchdog = Watchdog::new(exec.interrupt());
+    let stop: &AtomicBool = env.stop;
     let mut l = Loop {
         exec,
         env,
@@ -178,8 +315,22 @@ pub fn run_safe<E: Executor>(
         ticks: 0,
         last_scan_ns: None,
         safe,
+        watchdog,
+        dogs,
+        overruns_in_row,
     };
-    let end = l.run(cfg);
+    let end = std::thread::scope(|s| {
+        let timer = l.watchdog.watcher(stop);
+        let spawned = std::thread::Builder::new()
+            .name("automat-watchdog".into())
+            .spawn_scoped(s, timer);
+        if let Err(e) = spawned {
+            return RunEnd::Observer(format!("cannot start the watchdog thread: {e}"));
+        }
+        let end = l.run(cfg);
+        l.watchdog.quit();
+        end
+    });
     if matches!(end, RunEnd::Stopped) {
         let t = l.last_scan_ns.unwrap_or(0);
         l.safe_state(t);
@@ -282,17 +433,43 @@ impl<E: Executor> Loop<'_, '_, E> {
             let Some(task) = self.tasks.get(i) else {
                 continue;
             };
+            let dog = self.dogs.get(i).copied().flatten();
+            self.watchdog.arm(dog.map(|d| d.limit_ns()));
+            let mut failed = None;
             for inst in &task.programs {
                 if let Err(fault) = self.exec.run_program(inst, t) {
-                    let report = FaultReport {
-                        fault,
-                        task: task.name.clone(),
-                        instance: inst.name.clone(),
-                        plc_time_ns: t,
-                    };
-                    self.safe_state(t);
-                    return Some(RunEnd::Fault(Box::new(report)));
+                    failed = Some((fault, inst));
+                    break;
                 }
+            }
+            let (wall_ns, cause) = self.watchdog.disarm();
+            let fault = match failed {
+                Some((mut fault, inst)) => {
+                    if fault.message == automat_ir::interrupt::INTERRUPTED {
+                        fault.message = match (cause, dog) {
+                            (Some(Cause::Time), Some(d)) => d.interrupted(&task.name),
+                            _ => format!(
+                                "stopped: the scan was still running {} after the stop request",
+                                dur(STOP_WITHIN_NS as i64)
+                            ),
+                        };
+                    }
+                    Some((fault, inst.name.clone()))
+                }
+                None => match (dog, self.overruns_in_row.get_mut(i)) {
+                    (Some(d), Some(row)) => count_overrun(row, d, wall_ns, task),
+                    _ => None,
+                },
+            };
+            if let Some((fault, instance)) = fault {
+                let report = FaultReport {
+                    fault,
+                    task: task.name.clone(),
+                    instance,
+                    plc_time_ns: t,
+                };
+                self.safe_state(t);
+                return Some(RunEnd::Fault(Box::new(report)));
             }
         }
         self.write_outputs(t);

@@ -56,6 +56,9 @@ impl Executor for Slow {
         self.now.set(self.now.get() + cost);
         self.inner.run_program(inst, now_ns)
     }
+    fn interrupt(&self) -> automat_ir::Interrupt {
+        self.inner.interrupt()
+    }
 }
 
 #[derive(Default)]

@@ -2,7 +2,9 @@
 //! the image, and every run is logged with its PLC time.
 
 use crate::executor::Executor;
-use automat_ir::{Areas, Fault, FaultKind, Program, ProgramInstance, Site, SymbolTable, TaskDef};
+use automat_ir::{
+    Areas, Fault, FaultKind, Interrupt, Program, ProgramInstance, Site, SymbolTable, TaskDef,
+};
 
 /// What the fake "code" of a program does, by `ProgramInstance::func`.
 pub const COUNT: u32 = 0;
@@ -10,11 +12,17 @@ pub const COUNT: u32 = 0;
 pub const SET_OUTPUT: u32 = 1;
 /// Faults when its counter reaches 3 (on its third run).
 pub const FAULT_ON_THIRD: u32 = 2;
+/// An endless loop: runs until the interrupt flag is raised, then faults
+/// as a backend does (gives up after 30 s so a broken test ends).
+pub const SPIN: u32 = 3;
+/// `SLEEP + ms`: counts like [`COUNT`] after `ms` of wall time.
+pub const SLEEP: u32 = 1000;
 
 pub struct Fake {
     pub program: Program,
     pub image: Vec<u8>,
     pub log: Vec<(String, i64)>,
+    pub interrupt: Interrupt,
 }
 
 impl Fake {
@@ -23,6 +31,7 @@ impl Fake {
             image: program.initial_image.clone(),
             program,
             log: Vec::new(),
+            interrupt: Interrupt::new(),
         }
     }
 
@@ -54,6 +63,26 @@ impl Executor for Fake {
                 let q = self.program.areas.output.start as usize;
                 self.image[q] = 0xFF;
             }
+            SPIN => {
+                let t = std::time::Instant::now();
+                while !self.interrupt.is_raised() {
+                    if t.elapsed().as_secs() >= 30 {
+                        return Ok(());
+                    }
+                    std::thread::sleep(std::time::Duration::from_millis(1));
+                }
+                return Err(Fault {
+                    kind: FaultKind::Watchdog,
+                    message: automat_ir::interrupt::INTERRUPTED.into(),
+                    site: Site {
+                        pou: "MAIN".into(),
+                        location: "main.st:7:5".into(),
+                    },
+                });
+            }
+            f if f >= SLEEP => {
+                std::thread::sleep(std::time::Duration::from_millis(u64::from(f - SLEEP)));
+            }
             FAULT_ON_THIRD if n == 3 => {
                 return Err(Fault {
                     kind: FaultKind::DivisionByZero,
@@ -67,6 +96,9 @@ impl Executor for Fake {
             _ => {}
         }
         Ok(())
+    }
+    fn interrupt(&self) -> Interrupt {
+        self.interrupt.clone()
     }
 }
 
@@ -90,6 +122,7 @@ pub fn task(
         priority,
         single: None,
         programs,
+        watchdog: Default::default(),
     }
 }
 

@@ -86,6 +86,7 @@ fn program(divisor: i32) -> Program {
                 func: 0,
                 instance_offset: 0,
             }],
+            watchdog: Default::default(),
         }],
         funcs: vec![counter()],
         sites: vec![Site {

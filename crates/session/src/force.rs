@@ -93,6 +93,9 @@ impl<E: Executor> Executor for Forcing<E> {
         table.apply(self.inner.image_mut());
         result
     }
+    fn interrupt(&self) -> automat_ir::Interrupt {
+        self.inner.interrupt()
+    }
 }
 
 /// A boxed backend as an [`Executor`] (the session takes any backend).
@@ -113,6 +116,9 @@ impl Executor for Boxed {
     }
     fn run_program(&mut self, inst: &ProgramInstance, now_ns: i64) -> Result<(), Fault> {
         self.0.run_program(inst, now_ns)
+    }
+    fn interrupt(&self) -> automat_ir::Interrupt {
+        self.0.interrupt()
     }
 }
 
@@ -139,5 +145,8 @@ impl<E: Executor> Executor for Shifted<E> {
     fn run_program(&mut self, inst: &ProgramInstance, now_ns: i64) -> Result<(), Fault> {
         self.inner
             .run_program(inst, now_ns.saturating_add(self.offset.get()))
+    }
+    fn interrupt(&self) -> automat_ir::Interrupt {
+        self.inner.interrupt()
     }
 }

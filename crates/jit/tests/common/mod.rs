@@ -80,6 +80,39 @@ pub fn run_on<E: Executor>(exec: &mut E, cycles: u64, cycle_time_ns: i64) -> Out
     }
 }
 
+/// Runs `program`, whose tasks have a watchdog in time that stops it, on
+/// both engines: both must fault alike (kind, message, source line; the
+/// column and the image at the fault depend on where the timer found the
+/// run) after identical scans.
+pub fn differential_timed(program: Program, cycles: u64, cycle_time_ns: i64) -> Result<(), String> {
+    let mut jit = Jit::new(program.clone()).map_err(|e| format!("JIT refused: {e}"))?;
+    let mut interp = Engine::new(program);
+    let a = run_on(&mut interp, cycles, cycle_time_ns);
+    let b = run_on(&mut jit, cycles, cycle_time_ns);
+    let (RunEnd::Fault(x), RunEnd::Fault(y)) = (&a.end, &b.end) else {
+        return Err(format!(
+            "not stopped by the watchdog: interpreter {:?}, JIT {:?}",
+            a.end, b.end
+        ));
+    };
+    let line = |l: &str| {
+        l.rsplit_once(':')
+            .map_or(l.to_string(), |(a, _)| a.to_string())
+    };
+    let same = x.fault.kind == y.fault.kind
+        && x.fault.message == y.fault.message
+        && x.fault.site.pou == y.fault.site.pou
+        && line(&x.fault.site.location) == line(&y.fault.site.location)
+        && (&x.task, &x.instance, x.plc_time_ns) == (&y.task, &y.instance, y.plc_time_ns);
+    if !same {
+        return Err(format!("fault: interpreter {x}, JIT {y}"));
+    }
+    if a.images != b.images {
+        return Err("the images of the completed scans differ".into());
+    }
+    Ok(())
+}
+
 /// Runs `program` on the interpreter and the JIT; `Err` describes the
 /// first difference.
 pub fn differential(

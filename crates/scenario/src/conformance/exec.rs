@@ -28,7 +28,14 @@ fn compile(name: &str, text: &str, spec: &Spec) -> Result<Program, String> {
     let opts = LowerOptions {
         program: spec.program.clone(),
     };
-    lower(&units, &analysis, &interner, &map, &opts).map_err(|d| render::render_report(&map, &d))
+    let mut program = lower(&units, &analysis, &interner, &map, &opts)
+        .map_err(|d| render::render_report(&map, &d))?;
+    if let Some(w) = spec.watchdog {
+        for t in &mut program.tasks {
+            t.watchdog = w;
+        }
+    }
+    Ok(program)
 }
 
 /// Prints the `expect-at` places after the scans they name.

@@ -14,7 +14,13 @@
 //! - `cycle-time: T#10ms` — period of the cyclic task (default T#10ms). The
 //!   clock is virtual: scan k runs at PLC time (k − 1) × cycle time.
 //! - `program: NAME` — the PROGRAM to run when the file has several.
-//! - `budget: N` — the engine's watchdog budget (instructions per scan).
+//! - `budget: N` — the engine's instruction budget per task run: a run
+//!   executing more faults as `watchdog` at exactly that instruction (a
+//!   deterministic site; none by default).
+//! - `watchdog: TIME|off` — the watchdog in time of every task (as
+//!   `[tasks.NAME] watchdog`; default 10 s of wall time per run, the
+//!   virtual clock's). Its fault site is the line the run was executing:
+//!   write the endless loop on one line.
 //! - `expect: PATH = VALUE` — after the last scan, the variable at PATH
 //!   (`x`, `Main.fb.Q`, `arr[2, 1].x`, a global, `%QX0.1`: anything
 //!   `automat run --print` takes) prints exactly as VALUE (the

@@ -32,6 +32,8 @@ pub struct Spec {
     pub cycle_time_ns: i64,
     pub program: Option<String>,
     pub budget: Option<u64>,
+    /// `watchdog: TIME|off`: the watchdog of every task of the case.
+    pub watchdog: Option<automat_ir::TaskWatchdog>,
     pub expects: Vec<Expect>,
     pub fault: Option<ExpectFault>,
     /// `skip-until:` reason: the case is reported as pending.
@@ -108,6 +110,7 @@ pub fn parse(source: &str) -> Result<Spec, String> {
         cycle_time_ns: 10_000_000,
         program: None,
         budget: None,
+        watchdog: None,
         expects: Vec::new(),
         fault: None,
         pending: None,
@@ -142,6 +145,12 @@ pub fn parse(source: &str) -> Result<Spec, String> {
                 spec.budget = Some(
                     rest.parse()
                         .map_err(|_| format!("line {line}: budget: `{rest}` is not a count"))?,
+                )
+            }
+            "watchdog" => {
+                spec.watchdog = Some(
+                    automat_runtime::watchdog::parse_watchdog(rest)
+                        .map_err(|e| format!("line {line}: watchdog: {e}"))?,
                 )
             }
             "expect" => spec.expects.push(parse_expect(rest, None, line)?),
