@@ -62,6 +62,9 @@ fn inputs(args: &CheckArgs) -> Result<Inputs, Outcome> {
         let mut map = SourceMap::new();
         match automat_project::load(&toml, &mut map) {
             Ok(project) => {
+                for w in &project.warnings {
+                    eprintln!("{w}");
+                }
                 files.extend(project.sources);
                 libraries.extend(project.libraries);
             }
