@@ -39,6 +39,7 @@ enum Format {
     /// rustc-like text: `file:line:col: error[E030]: message`, an excerpt and a caret.
     Human,
     /// A JSON array of diagnostics (code, severity, file, line, column, end, message, labels, notes).
+    /// Both formats show the first 200 diagnostics, then one line (in JSON a `note`) counting the rest.
     Json,
 }
 

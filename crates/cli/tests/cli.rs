@@ -147,3 +147,32 @@ fn non_utf8_source_is_read_not_rejected() {
         String::from_utf8_lossy(&out.stdout)
     );
 }
+
+#[test]
+fn diagnostics_stop_after_200_in_text_and_json() {
+    // 300 undefined names: the first 200 are shown, the rest counted.
+    let body: String = (0..300).map(|i| format!("    u{i} := 1;\n")).collect();
+    let path = temp_file("many.st", &format!("PROGRAM p\n{body}END_PROGRAM\n"));
+    let out = automat(&["check", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(text.matches(": error[").count(), 200, "{text}");
+    assert!(text.contains(":201:5: error["), "{text}");
+    assert!(!text.contains(":202:5: error["), "{text}");
+    assert!(
+        text.ends_with(
+            "and 100 more (100 errors, 0 warnings) not shown\n\n300 errors, 0 warnings\n"
+        ),
+        "{text}"
+    );
+    let out = automat(&["check", "--format", "json", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let items = v.as_array().expect("array");
+    assert_eq!(items.len(), 201);
+    assert_eq!(items[200]["severity"], "note");
+    assert_eq!(
+        items[200]["message"],
+        "and 100 more (100 errors, 0 warnings) not shown"
+    );
+}
