@@ -54,6 +54,43 @@ pub fn lower(
     sources: &SourceMap,
     opts: &LowerOptions,
 ) -> Result<Program, Vec<Diagnostic>> {
+    lower_as(units, analysis, interner, sources, opts, false)
+}
+
+/// What [`lower`] would refuse in a checked project (no errors), for
+/// `automat check`: E091 (with the exact image size needed), E092, ...
+/// Without a CONFIGURATION every PROGRAM is lowered, as the one a run may
+/// choose, so no E090 (which program to run is the run's question); the
+/// programs share one place in the image, so the size checked is the
+/// largest a run needs.
+pub fn check(
+    units: &[SourceUnit],
+    analysis: &Analysis,
+    interner: &Interner,
+    sources: &SourceMap,
+) -> Vec<Diagnostic> {
+    match lower_as(
+        units,
+        analysis,
+        interner,
+        sources,
+        &LowerOptions::default(),
+        true,
+    ) {
+        Ok(_) => Vec::new(),
+        Err(diags) => diags,
+    }
+}
+
+/// `every_program`: see [`check`].
+fn lower_as(
+    units: &[SourceUnit],
+    analysis: &Analysis,
+    interner: &Interner,
+    sources: &SourceMap,
+    opts: &LowerOptions,
+    every_program: bool,
+) -> Result<Program, Vec<Diagnostic>> {
     let model = &analysis.model;
     let mut cx = Cx {
         model,
@@ -106,14 +143,24 @@ pub fn lower(
     }
 
     // Program instances and tasks.
-    let instances = match tasks::instances(&mut cx, opts) {
+    let instances = match tasks::instances(&mut cx, opts, every_program) {
         Ok(i) => i,
         Err(d) => return Err(vec![d]),
     };
     let mut placed = Vec::new();
-    for pi in &instances {
-        let l = cx.layout.pou(pi.pou);
-        placed.push(cx.alloc(l.bytes, l.align.max(8)));
+    if every_program && model.configs.is_empty() {
+        // Alternatives (a run picks one): all at one place, the largest's size.
+        let (size, align) = instances.iter().fold((0u64, 8u32), |(s, a), pi| {
+            let l = cx.layout.pou(pi.pou);
+            (s.max(l.bytes), a.max(l.align))
+        });
+        let at = cx.alloc(size, align);
+        placed.resize(instances.len(), at);
+    } else {
+        for pi in &instances {
+            let l = cx.layout.pou(pi.pou);
+            placed.push(cx.alloc(l.bytes, l.align.max(8)));
+        }
     }
 
     // Static frames of functions and templates of every POU.
