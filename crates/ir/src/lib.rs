@@ -25,6 +25,7 @@
 //! instruction set lives in its own modules.
 
 pub mod code;
+pub mod strbuf;
 pub mod symbols;
 pub mod verify;
 

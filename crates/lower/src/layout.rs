@@ -4,7 +4,8 @@
 //! Rules (the image format, shared with every backend and tool):
 //! - BOOL 1 byte; integers and bit strings their width; REAL f32, LREAL
 //!   f64; every time and date type i64; CHAR 1, WCHAR 2; enums as their base.
-//! - STRING[n] = u16 length + n bytes; WSTRING[n] = u16 length + n u16.
+//! - STRING[n] = u16 length + n bytes; WSTRING[n] = u16 length + n u16
+//!   (`automat_ir::strbuf`; n ≤ 32,767).
 //! - Arrays row-major; structures and instances as their fields in order,
 //!   each naturally aligned; the size rounded up to the alignment.
 //! - VAR_IN_OUT and REF_TO: a u32 image offset, 0 being NULL. A

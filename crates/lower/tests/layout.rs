@@ -213,3 +213,20 @@ fn types_nested_too_deep_are_refused_not_laid_out_as_nothing() {
     let path = format!("Main.t{}.x", ".a".repeat(60));
     assert_eq!(p.int(&path), 3);
 }
+
+#[test]
+fn the_checker_and_the_image_agree_on_the_longest_string() {
+    assert_eq!(
+        automat_sema::types::MAX_STRING_LEN,
+        automat_ir::strbuf::MAX_LEN
+    );
+    let errs = build_err("PROGRAM Main VAR s : STRING[32768]; END_VAR s := 'a'; END_PROGRAM");
+    assert_eq!(
+        errs,
+        vec![(
+            "E072".to_string(),
+            "string length must be between 1 and 32767 (LEN and positions are INT), found 32768"
+                .to_string()
+        )]
+    );
+}

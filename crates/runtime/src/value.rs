@@ -5,6 +5,7 @@
 
 use crate::path::{Place, PlaceType};
 use automat_iec::{format_value, Elementary as E, Value};
+use automat_ir::strbuf;
 
 fn bytes<const N: usize>(image: &[u8], offset: u32) -> Option<[u8; N]> {
     let start = usize::try_from(offset).ok()?;
@@ -54,16 +55,16 @@ pub fn read_elementary(image: &[u8], offset: u32, bit: Option<u8>, ty: E) -> Opt
 /// A STRING[cap]: the stored length is clamped to the capacity, so a
 /// damaged length never reads beyond the variable.
 fn read_string(image: &[u8], offset: u32, cap: u32) -> Option<Value> {
-    let len = u16::from_le_bytes(bytes(image, offset)?).min(u16::try_from(cap).unwrap_or(u16::MAX));
-    let start = usize::try_from(offset).ok()?.checked_add(2)?;
-    let data = image.get(start..start.checked_add(usize::from(len))?)?;
+    let len = usize::try_from(strbuf::len(image, offset)?.min(cap)).ok()?;
+    let start = usize::try_from(offset.checked_add(strbuf::LEN_BYTES)?).ok()?;
+    let data = image.get(start..start.checked_add(len)?)?;
     Some(Value::Str(data.to_vec()))
 }
 
 fn read_wstring(image: &[u8], offset: u32, cap: u32) -> Option<Value> {
-    let len = u16::from_le_bytes(bytes(image, offset)?).min(u16::try_from(cap).unwrap_or(u16::MAX));
-    let start = usize::try_from(offset).ok()?.checked_add(2)?;
-    let data = image.get(start..start.checked_add(usize::from(len) * 2)?)?;
+    let len = usize::try_from(strbuf::len(image, offset)?.min(cap)).ok()?;
+    let start = usize::try_from(offset.checked_add(strbuf::LEN_BYTES)?).ok()?;
+    let data = image.get(start..start.checked_add(len.checked_mul(2)?)?)?;
     Some(Value::WStr(
         data.chunks_exact(2)
             .map(|c| u16::from_le_bytes([c[0], c[1]]))
