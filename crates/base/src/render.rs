@@ -69,11 +69,37 @@ pub fn render_human(map: &SourceMap, d: &Diagnostic) -> String {
     out
 }
 
-/// The whole report for a run: every diagnostic, then a summary line.
+/// How many diagnostics a report shows. Past a few hundred nobody reads
+/// them, and a hostile or binary file would otherwise give more text than
+/// it is long (50 MB of random bytes gave 104 MB): the rest are counted.
+pub const MAX_SHOWN: usize = 200;
+
+fn plural(n: usize, word: &str) -> String {
+    format!("{n} {word}{}", if n == 1 { "" } else { "s" })
+}
+
+/// What the report says for the diagnostics past [`MAX_SHOWN`]:
+/// `and 5 more (4 errors, 1 warning)`; `None` when all are shown.
+pub fn omitted(diags: &[Diagnostic]) -> Option<String> {
+    let rest = diags.get(MAX_SHOWN..).filter(|r| !r.is_empty())?;
+    let errors = rest.iter().filter(|d| d.is_error()).count();
+    Some(format!(
+        "and {} more ({}, {})",
+        rest.len(),
+        plural(errors, "error"),
+        plural(rest.len() - errors, "warning")
+    ))
+}
+
+/// The whole report for a run: the first [`MAX_SHOWN`] diagnostics, a line
+/// counting the others, then a summary line over all of them.
 pub fn render_report(map: &SourceMap, diags: &[Diagnostic]) -> String {
     let mut out = String::new();
-    for d in diags {
+    for d in diags.iter().take(MAX_SHOWN) {
         out.push_str(&render_human(map, d));
+    }
+    if let Some(more) = omitted(diags) {
+        let _ = writeln!(out, "{more} not shown\n");
     }
     let errors = diags.iter().filter(|d| d.is_error()).count();
     let warnings = diags.len() - errors;
@@ -91,9 +117,23 @@ pub fn render_report(map: &SourceMap, diags: &[Diagnostic]) -> String {
 }
 
 /// Diagnostics as a JSON array of objects with `code`, `severity`, `file`,
-/// `line`, `column`, `end_line`, `end_column`, `message`, `labels`, `notes`.
+/// `line`, `column`, `end_line`, `end_column`, `message`, `labels`, `notes`:
+/// the first [`MAX_SHOWN`], then, when there are more, one object of the
+/// same shape with severity `note`, an empty code, no file and the message
+/// `and N more (E errors, W warnings) not shown`.
 pub fn render_json(map: &SourceMap, diags: &[Diagnostic]) -> String {
-    let items: Vec<serde_json::Value> = diags.iter().map(|d| json_of(map, d)).collect();
+    let mut items: Vec<serde_json::Value> = diags
+        .iter()
+        .take(MAX_SHOWN)
+        .map(|d| json_of(map, d))
+        .collect();
+    if let Some(more) = omitted(diags) {
+        items.push(serde_json::json!({
+            "file": null, "line": 0, "column": 0, "end_line": 0, "end_column": 0,
+            "code": "", "severity": "note", "message": format!("{more} not shown"),
+            "labels": [], "notes": [],
+        }));
+    }
     serde_json::to_string_pretty(&items).unwrap_or_else(|_| "[]".to_string())
 }
 
@@ -187,5 +227,69 @@ mod tests {
         assert_eq!(v[0]["column"], 1);
         assert_eq!(v[0]["code"], "W001");
         assert_eq!(v[0]["severity"], "warning");
+    }
+
+    /// 150 errors then 100 warnings on one line each of a file.
+    fn many() -> (SourceMap, Vec<Diagnostic>) {
+        let mut map = SourceMap::new();
+        let f = map.add("p.st", "x\n".repeat(250));
+        let diags = (0..250u32)
+            .map(|i| {
+                let span = Span::new(f, 2 * i, 2 * i + 1);
+                if i < 150 {
+                    Diagnostic::error(Code::E030, span, format!("e{i}"))
+                } else {
+                    Diagnostic::warning(Code::W001, span, format!("w{i}"))
+                }
+            })
+            .collect();
+        (map, diags)
+    }
+
+    #[test]
+    fn a_report_shows_the_first_200_and_counts_the_rest() {
+        let (map, diags) = many();
+        let text = render_report(&map, &diags);
+        assert_eq!(text.matches(": error[E030]: ").count(), 150);
+        assert_eq!(text.matches(": warning[W001]: ").count(), 50);
+        assert!(text.contains("p.st:200:1: warning[W001]: w199\n"), "{text}");
+        assert!(!text.contains("w200"));
+        let tail =
+            "\n\nand 50 more (0 errors, 50 warnings) not shown\n\n150 errors, 100 warnings\n";
+        assert!(text.ends_with(tail), "{}", &text[text.len() - 200..]);
+        // At the cap, nothing is left out.
+        let text = render_report(&map, &diags[..200]);
+        assert!(!text.contains("not shown"));
+        assert!(text.ends_with("150 errors, 50 warnings\n"));
+        let mixed: Vec<Diagnostic> = diags[..50].iter().chain(&diags).cloned().collect();
+        assert_eq!(
+            omitted(&mixed).unwrap(),
+            "and 100 more (0 errors, 100 warnings)"
+        );
+        let errors_past: Vec<Diagnostic> =
+            diags[150..].iter().chain(&diags[..150]).cloned().collect();
+        assert_eq!(
+            omitted(&errors_past).unwrap(),
+            "and 50 more (50 errors, 0 warnings)"
+        );
+    }
+
+    #[test]
+    fn json_shows_the_first_200_and_one_note_for_the_rest() {
+        let (map, diags) = many();
+        let v: serde_json::Value = serde_json::from_str(&render_json(&map, &diags)).unwrap();
+        let items = v.as_array().unwrap();
+        assert_eq!(items.len(), 201);
+        assert_eq!(items[199]["message"], "w199");
+        let note = &items[200];
+        assert_eq!(note["severity"], "note");
+        assert_eq!(note["code"], "");
+        assert_eq!(note["file"], serde_json::Value::Null);
+        assert_eq!(
+            note["message"],
+            "and 50 more (0 errors, 50 warnings) not shown"
+        );
+        let v: serde_json::Value = serde_json::from_str(&render_json(&map, &diags[..200])).unwrap();
+        assert_eq!(v.as_array().unwrap().len(), 200);
     }
 }

@@ -7,6 +7,9 @@ use std::path::PathBuf;
 
 /// Check Structured Text sources and report every error and warning.
 ///
+/// A program without errors is also compiled (not run), so everything
+/// `automat run` refuses at compile time is reported: a memory image too
+/// large (E091, with the bytes needed), recursion (E092), ...
 /// All files given (and all *.st files under the directories given) form one
 /// project: POUs, types and globals of one file are visible in the others.
 /// A directory holding `automat.toml` is checked as that project: its
@@ -39,6 +42,7 @@ enum Format {
     /// rustc-like text: `file:line:col: error[E030]: message`, an excerpt and a caret.
     Human,
     /// A JSON array of diagnostics (code, severity, file, line, column, end, message, labels, notes).
+    /// Both formats show the first 200 diagnostics, then one line (in JSON a `note`) counting the rest.
     Json,
 }
 
@@ -62,6 +66,9 @@ fn inputs(args: &CheckArgs) -> Result<Inputs, Outcome> {
         let mut map = SourceMap::new();
         match automat_project::load(&toml, &mut map) {
             Ok(project) => {
+                for w in &project.warnings {
+                    eprintln!("{w}");
+                }
                 files.extend(project.sources);
                 libraries.extend(project.libraries);
             }
@@ -102,8 +109,16 @@ pub fn run(args: &CheckArgs) -> Outcome {
     };
     automat_vendor::add_libraries(&mut map, &dialects);
     let mut interner = Interner::new();
-    let (_units, analysis) = automat_vendor::check_sources(&map, &mut interner, &dialects);
+    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &dialects);
+    // A clean program is lowered too, so check refuses what run would
+    // refuse at compile time (E091 image too large, E092 recursion, ...).
+    let lowered = if analysis.has_errors() {
+        Vec::new()
+    } else {
+        automat_lower::check(&units, &analysis, &interner, &map)
+    };
     let mut diags = analysis.diagnostics;
+    diags.extend(lowered);
     if args.no_warnings {
         diags.retain(|d| d.severity == Severity::Error);
     }

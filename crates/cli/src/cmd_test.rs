@@ -4,6 +4,7 @@ use crate::{plot, Outcome};
 use automat_base::{render, SourceMap};
 use automat_iec::format::format_duration;
 use automat_ir::Program;
+use automat_project::folder::{Entry, Walk};
 use automat_project::{build, find_above, Project};
 use automat_scenario::conformance::{self, Backend, Verdict};
 use clap::Args;
@@ -44,45 +45,58 @@ enum Item {
 /// The file that keeps `automat test` out of a folder it searches.
 pub const SKIP_MARKER: &str = ".automat-test-skip";
 
-/// Collects the items under `p`; `given` when `p` is a command-line path
-/// (searched even when marked).
-fn walk(p: &Path, given: bool, out: &mut Vec<Item>) -> Result<(), String> {
-    let meta = std::fs::metadata(p).map_err(|e| format!("{}: {e}", p.display()))?;
-    if meta.is_dir() {
-        if !given && p.join(SKIP_MARKER).is_file() {
-            println!("skipped {} ({SKIP_MARKER})", p.display());
-            return Ok(());
-        }
-        let mut entries: Vec<PathBuf> = std::fs::read_dir(p)
-            .map_err(|e| format!("{}: {e}", p.display()))?
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .collect();
-        entries.sort();
-        for e in entries {
+/// Collects the items under the command-line paths (searched even when
+/// marked), each file once whatever the symbolic links
+/// (`automat_project::folder`; what was left out is one warning).
+fn collect(paths: &[PathBuf]) -> Result<Vec<Item>, String> {
+    let mut walk = Walk::new();
+    let mut keep = |e: Entry| match e {
+        Entry::Dir(d) => {
             // Hidden folders and build output are not searched.
-            let name = e.file_name().and_then(|n| n.to_str()).unwrap_or("");
-            if e.is_dir() && (name.starts_with('.') || name == "target") {
-                continue;
+            let name = d.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            if name.starts_with('.') || name == "target" {
+                false
+            } else if d.join(SKIP_MARKER).is_file() {
+                println!("skipped {} ({SKIP_MARKER})", d.display());
+                false
+            } else {
+                true
             }
-            walk(&e, false, out)?;
         }
-        return Ok(());
+        Entry::File(f) => matches!(extension(f).as_deref(), Some("scn" | "st")),
+    };
+    let mut files = Vec::new();
+    for p in paths {
+        let meta = std::fs::metadata(p).map_err(|e| format!("{}: {e}", p.display()))?;
+        if meta.is_dir() {
+            walk.dir(p, &mut keep, &mut files)?;
+        } else if walk.first_visit(p)? {
+            files.push(p.clone());
+        }
     }
-    let ext = p
-        .extension()
+    if let Some(w) = walk.warning() {
+        eprintln!("{w}");
+    }
+    let mut out = Vec::new();
+    for p in files {
+        match extension(&p).as_deref() {
+            Some("scn") => out.push(Item::Scenario(p)),
+            Some("st") => {
+                let text = std::fs::read(&p).map_err(|e| format!("{}: {e}", p.display()))?;
+                if conformance::is_conformance(&String::from_utf8_lossy(&text)) {
+                    out.push(Item::Conformance(p));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(out)
+}
+
+fn extension(p: &Path) -> Option<String> {
+    p.extension()
         .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("scn") => out.push(Item::Scenario(p.to_path_buf())),
-        Some("st") => {
-            let text = std::fs::read(p).map_err(|e| format!("{}: {e}", p.display()))?;
-            if conformance::is_conformance(&String::from_utf8_lossy(&text)) {
-                out.push(Item::Conformance(p.to_path_buf()));
-            }
-        }
-        _ => {}
-    }
-    Ok(())
+        .map(str::to_ascii_lowercase)
 }
 
 /// A project loaded and compiled once for all its scenarios.
@@ -101,17 +115,16 @@ impl Runner {
     fn project(&mut self, toml: &Path) -> &Built {
         let map = &mut self.map;
         self.projects.entry(toml.to_path_buf()).or_insert_with(|| {
-            match automat_project::load(toml, map) {
-                Err(d) => Err(render::render_report(map, &d)),
-                Ok(p) => match build::compile(&p.sources, p.program.clone(), &p.libraries) {
-                    Ok((mut prog, _warnings)) => {
-                        match automat_project::tasks::apply(&p.tasks, &mut prog) {
-                            Ok(()) => Ok((p, prog)),
-                            Err(d) => Err(render::render_report(map, &d)),
-                        }
-                    }
-                    Err(e) => Err(e.text),
+            let p = automat_project::load(toml, map).map_err(|d| render::render_report(map, &d))?;
+            for w in &p.warnings {
+                eprintln!("{w}");
+            }
+            match build::compile(&p.sources, p.program.clone(), &p.libraries) {
+                Ok((mut prog, _warnings)) => match automat_project::tasks::apply(&p.tasks, &mut prog) {
+                    Ok(()) => Ok((p, prog)),
+                    Err(d) => Err(render::render_report(map, &d)),
                 },
+                Err(e) => Err(e.text),
             }
         })
     }
@@ -258,13 +271,13 @@ pub fn run(args: &TestArgs) -> Outcome {
     } else {
         args.paths.clone()
     };
-    let mut items = Vec::new();
-    for p in &paths {
-        if let Err(e) = walk(p, true, &mut items) {
+    let items = match collect(&paths) {
+        Ok(items) => items,
+        Err(e) => {
             eprintln!("error: {e}");
             return Outcome::BadInput;
         }
-    }
+    };
     let mut r = Runner {
         map: SourceMap::new(),
         projects: BTreeMap::new(),

@@ -1,51 +1,49 @@
 //! Turning the PATH arguments of a command into source files.
 
 use automat_base::SourceMap;
+use automat_project::folder::{Entry, Walk};
 use std::path::{Path, PathBuf};
 
 /// File extensions read as Structured Text when a directory is given.
 const SOURCE_EXTENSIONS: &[&str] = &["st", "iecst"];
 
 /// Expands files and directories (recursively, sorted by path so every run
-/// sees the same order) into the list of source files.
+/// sees the same order) into the list of source files, each file once: a
+/// folder or file reached again through a symbolic link is left out, with
+/// one warning on stderr (see `automat_project::folder`).
 pub fn collect(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
     let mut out = Vec::new();
+    let mut walk = Walk::new();
+    let mut keep = |e: Entry| match e {
+        Entry::Dir(_) => true,
+        Entry::File(p) => is_source(p),
+    };
     for p in paths {
         let meta = std::fs::metadata(p).map_err(|e| format!("{}: {}", p.display(), e))?;
         if meta.is_dir() {
             let before = out.len();
-            walk(p, &mut out)?;
-            if out.len() == before {
+            let skipped = walk.skipped().len();
+            walk.dir(p, &mut keep, &mut out)?;
+            if out.len() == before && walk.skipped().len() == skipped {
                 return Err(format!(
                     "{}: no Structured Text files (*.st) in this directory",
                     p.display()
                 ));
             }
-        } else {
+        } else if walk.first_visit(p)? {
             out.push(p.clone());
         }
+    }
+    if let Some(w) = walk.warning() {
+        eprintln!("{w}");
     }
     Ok(out)
 }
 
-fn walk(dir: &Path, out: &mut Vec<PathBuf>) -> Result<(), String> {
-    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|e| format!("{}: {}", dir.display(), e))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .collect();
-    entries.sort();
-    for path in entries {
-        if path.is_dir() {
-            walk(&path, out)?;
-        } else if path
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| SOURCE_EXTENSIONS.iter().any(|x| x.eq_ignore_ascii_case(e)))
-        {
-            out.push(path);
-        }
-    }
-    Ok(())
+fn is_source(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| SOURCE_EXTENSIONS.iter().any(|x| x.eq_ignore_ascii_case(e)))
 }
 
 /// Reads the files into a source map. Text that is not UTF-8 is read as

@@ -2,7 +2,27 @@
 //!
 //! Exit codes are a contract that scripts rely on: 0 ok, 1 the program has
 //! errors, 2 bad command line or unreadable input (3 is reserved for runtime
-//! faults of `automat run`).
+//! faults of `automat run`). A closed stdout or stderr (`| head -1`)
+//! changes neither: the output is dropped and the command ends as it
+//! would have (see `out.rs`).
+
+// Every print of the binary goes through `out.rs`, which never panics on a
+// closed pipe. Defined before the modules, these shadow the standard
+// macros in all of them.
+macro_rules! print {
+    ($($arg:tt)*) => { $crate::out::stdout(format_args!($($arg)*)) };
+}
+macro_rules! println {
+    () => { $crate::out::stdout(format_args!("\n")) };
+    ($($arg:tt)*) => { $crate::out::stdout(format_args!("{}\n", format_args!($($arg)*))) };
+}
+macro_rules! eprint {
+    ($($arg:tt)*) => { $crate::out::stderr(format_args!($($arg)*)) };
+}
+macro_rules! eprintln {
+    () => { $crate::out::stderr(format_args!("\n")) };
+    ($($arg:tt)*) => { $crate::out::stderr(format_args!("{}\n", format_args!($($arg)*))) };
+}
 
 mod cmd_check;
 mod cmd_explain;
@@ -13,6 +33,7 @@ mod cmd_test;
 mod engines;
 mod files;
 mod live;
+mod out;
 mod plot;
 mod project_run;
 mod retain_run;

@@ -127,6 +127,9 @@ struct Loaded {
 fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
     let mut map = SourceMap::new();
     let project = automat_project::load(toml, &mut map).map_err(|d| fail(&map, &d))?;
+    for w in &project.warnings {
+        eprintln!("{w}");
+    }
     let program_name = args.program.clone().or(project.program.clone());
     let mut libraries = project.libraries.clone();
     libraries.extend(args.libs.iter().cloned());

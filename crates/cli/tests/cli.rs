@@ -147,3 +147,79 @@ fn non_utf8_source_is_read_not_rejected() {
         String::from_utf8_lossy(&out.stdout)
     );
 }
+
+#[test]
+fn diagnostics_stop_after_200_in_text_and_json() {
+    // 300 undefined names: the first 200 are shown, the rest counted.
+    let body: String = (0..300).map(|i| format!("    u{i} := 1;\n")).collect();
+    let path = temp_file("many.st", &format!("PROGRAM p\n{body}END_PROGRAM\n"));
+    let out = automat(&["check", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(text.matches(": error[").count(), 200, "{text}");
+    assert!(text.contains(":201:5: error["), "{text}");
+    assert!(!text.contains(":202:5: error["), "{text}");
+    assert!(
+        text.ends_with(
+            "and 100 more (100 errors, 0 warnings) not shown\n\n300 errors, 0 warnings\n"
+        ),
+        "{text}"
+    );
+    let out = automat(&["check", "--format", "json", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let items = v.as_array().expect("array");
+    assert_eq!(items.len(), 201);
+    assert_eq!(items[200]["severity"], "note");
+    assert_eq!(
+        items[200]["message"],
+        "and 100 more (100 errors, 0 warnings) not shown"
+    );
+}
+
+#[test]
+fn check_reports_what_run_refuses_at_compile_time() {
+    // Recursion (E092) and an image too large (E091, with the exact bytes:
+    // 2^34 of the array, twice with its template, plus what every program
+    // has) are compile-time refusals of `run`: `check` reports them the same.
+    let rec = temp_file(
+        "recursive.st",
+        "FUNCTION Fact : INT\nVAR_INPUT n : INT; END_VAR\nIF n <= 1 THEN Fact := 1; ELSE Fact := n * Fact(n - 1); END_IF;\nEND_FUNCTION\nPROGRAM Main\nVAR x : INT; END_VAR\nx := Fact(5);\nEND_PROGRAM\n",
+    );
+    let big = temp_file(
+        "big.st",
+        "PROGRAM Main\nVAR a : ARRAY[0..2047] OF ARRAY[0..1048575] OF LREAL; END_VAR\na[0][0] := 1.0;\nEND_PROGRAM\n",
+    );
+    for (path, first) in [
+        (&rec, "recursive.st:1:1: error[E092]: recursive call: Fact -> Fact"),
+        (
+            &big,
+            "big.st:1:1: error[E091]: the program needs 34359739448 bytes of memory, more than the 268435456 bytes supported",
+        ),
+    ] {
+        let p = path.to_str().unwrap();
+        let check = automat(&["check", p]);
+        assert_eq!(check.status.code(), Some(1));
+        let text = String::from_utf8_lossy(&check.stdout).into_owned();
+        assert!(text.lines().next().unwrap_or("").ends_with(first), "{text}");
+        assert!(text.ends_with("\n1 error, 0 warnings\n"), "{text}");
+        let run = automat(&["run", p, "--cycles", "1"]);
+        assert_eq!(run.status.code(), Some(1));
+        // run prints the same report on stderr.
+        assert_eq!(String::from_utf8_lossy(&run.stderr), text);
+    }
+    // Several PROGRAMs without a CONFIGURATION: each is checked as the one a
+    // run may choose; which one is not check's question (no E090).
+    let two = temp_file(
+        "two.st",
+        "PROGRAM A\nVAR x : INT; END_VAR\nx := x + 1;\nEND_PROGRAM\nPROGRAM B\nVAR y : INT; END_VAR\ny := y + 1;\nEND_PROGRAM\n",
+    );
+    let out = automat(&["check", two.to_str().unwrap()]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    assert!(out.stdout.is_empty());
+}

@@ -3,6 +3,7 @@
 //! fault), never a panic.
 
 use automat_ir::code::MemTy;
+use automat_ir::strbuf;
 
 /// Reads a value of `ty` at `at`, extended to the register's 64 bits
 /// (floats as their bit patterns).
@@ -47,11 +48,11 @@ fn bytes<const N: usize>(image: &[u8], a: usize) -> Option<[u8; N]> {
     image.get(a..a.checked_add(N)?)?.try_into().ok()
 }
 
-/// The characters of the string buffer at `at` (u16 length, then units).
-/// The length is clamped to what the image holds.
+/// The characters of the string buffer at `at` (`automat_ir::strbuf`:
+/// length, then units). The length is clamped to what the image holds.
 pub fn read_str(image: &[u8], at: u32) -> Vec<u8> {
-    let len = load(image, at, MemTy::U16).unwrap_or(0) as usize;
-    let start = at as usize + 2;
+    let len = strbuf::len(image, at).unwrap_or(0) as usize;
+    let start = at as usize + strbuf::LEN_BYTES as usize;
     let end = (start + len).min(image.len());
     image
         .get(start..end)
@@ -60,17 +61,20 @@ pub fn read_str(image: &[u8], at: u32) -> Vec<u8> {
 }
 
 pub fn read_wstr(image: &[u8], at: u32) -> Vec<u16> {
-    let len = load(image, at, MemTy::U16).unwrap_or(0) as usize;
+    let len = strbuf::len(image, at).unwrap_or(0);
     (0..len)
-        .map_while(|i| load(image, at + 2 + 2 * i as u32, MemTy::U16).map(|u| u as u16))
+        .map_while(|i| {
+            let a = at.checked_add(strbuf::LEN_BYTES + 2 * i)?;
+            load(image, a, MemTy::U16).map(|u| u as u16)
+        })
         .collect()
 }
 
 /// Stores `s` truncated to `cap` characters.
 pub fn write_str(image: &mut [u8], at: u32, cap: u32, s: &[u8]) -> Option<()> {
-    let n = s.len().min(cap as usize);
-    store(image, at, MemTy::U16, n as u64)?;
-    let start = at as usize + 2;
+    let n = s.len().min(cap.min(strbuf::MAX_LEN) as usize);
+    strbuf::set_len(image, at, n as u32)?;
+    let start = at as usize + strbuf::LEN_BYTES as usize;
     image
         .get_mut(start..start + n)?
         .copy_from_slice(s.get(..n)?);
@@ -78,10 +82,15 @@ pub fn write_str(image: &mut [u8], at: u32, cap: u32, s: &[u8]) -> Option<()> {
 }
 
 pub fn write_wstr(image: &mut [u8], at: u32, cap: u32, s: &[u16]) -> Option<()> {
-    let n = s.len().min(cap as usize);
-    store(image, at, MemTy::U16, n as u64)?;
+    let n = s.len().min(cap.min(strbuf::MAX_LEN) as usize);
+    strbuf::set_len(image, at, n as u32)?;
     for (i, u) in s.iter().take(n).enumerate() {
-        store(image, at + 2 + 2 * i as u32, MemTy::U16, *u as u64)?;
+        store(
+            image,
+            at + strbuf::LEN_BYTES + 2 * i as u32,
+            MemTy::U16,
+            *u as u64,
+        )?;
     }
     Some(())
 }

@@ -26,6 +26,7 @@
 
 pub mod code;
 pub mod interrupt;
+pub mod strbuf;
 pub mod symbols;
 pub mod verify;
 

@@ -3,6 +3,7 @@
 
 use crate::layout::{mem_ty, Layout};
 use automat_ir::code::MemTy;
+use automat_ir::strbuf;
 use automat_sema::model::Section;
 use automat_sema::types::{Elem, TypeId, TypeKind};
 use automat_sema::value::{Init, Value};
@@ -84,9 +85,10 @@ impl ImageWriter<'_, '_> {
                 let (wide, cap) = (*wide, *len as usize);
                 if wide {
                     let units: Vec<u16> = s.encode_utf16().take(cap).collect();
-                    put(&mut self.img, at, MemTy::U16, units.len() as u64);
+                    strbuf::set_len(&mut self.img, at, units.len() as u32);
                     for (i, u) in units.iter().enumerate() {
-                        put(&mut self.img, at + 2 + 2 * i as u32, MemTy::U16, *u as u64);
+                        let a = at + strbuf::LEN_BYTES + 2 * i as u32;
+                        put(&mut self.img, a, MemTy::U16, *u as u64);
                     }
                 } else {
                     let bytes: Vec<u8> = s
@@ -94,9 +96,10 @@ impl ImageWriter<'_, '_> {
                         .take(cap)
                         .map(|c| if (c as u32) < 256 { c as u8 } else { b'?' })
                         .collect();
-                    put(&mut self.img, at, MemTy::U16, bytes.len() as u64);
+                    strbuf::set_len(&mut self.img, at, bytes.len() as u32);
                     for (i, b) in bytes.iter().enumerate() {
-                        put(&mut self.img, at + 2 + i as u32, MemTy::U8, *b as u64);
+                        let a = at + strbuf::LEN_BYTES + i as u32;
+                        put(&mut self.img, a, MemTy::U8, *b as u64);
                     }
                 }
             }

@@ -4,7 +4,8 @@
 //! Rules (the image format, shared with every backend and tool):
 //! - BOOL 1 byte; integers and bit strings their width; REAL f32, LREAL
 //!   f64; every time and date type i64; CHAR 1, WCHAR 2; enums as their base.
-//! - STRING[n] = u16 length + n bytes; WSTRING[n] = u16 length + n u16.
+//! - STRING[n] = u16 length + n bytes; WSTRING[n] = u16 length + n u16
+//!   (`automat_ir::strbuf`; n ≤ 32,767).
 //! - Arrays row-major; structures and instances as their fields in order,
 //!   each naturally aligned; the size rounded up to the alignment.
 //! - VAR_IN_OUT and REF_TO: a u32 image offset, 0 being NULL. A
@@ -26,8 +27,9 @@ use automat_sema::Model;
 use automat_syntax::ast::{AddrSize, Area, DirectAddress};
 use rustc_hash::FxHashMap;
 
-/// Nesting deeper than this is a type cycle (reported by the checker).
-const MAX_DEPTH: u32 = 64;
+/// Types nest at most this deep (arrays, structures, FB instances within
+/// each other); a cycle is reported by the checker before lowering.
+pub const MAX_DEPTH: u32 = 64;
 
 /// Where a variable of a POU lives.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,7 +51,12 @@ pub struct PouLayout {
     /// A function block without a declared ENO: the hidden byte holding
     /// the ENO of its last call (`fb.ENO`), followed by the EN byte.
     pub eno: Option<u32>,
+    /// The size in bytes, saturated at `u32::MAX` (see `bytes`).
     pub size: u32,
+    /// The exact size, for the image-size limit and its message: sizes are
+    /// computed in 64 bits so that a type larger than 4 GiB is reported with
+    /// what it needs, not a wrapped or saturated number.
+    pub bytes: u64,
     pub align: u32,
 }
 
@@ -64,9 +71,12 @@ pub struct AreaBases {
 pub struct Layout<'m> {
     pub model: &'m Model,
     pub areas: AreaBases,
-    sizes: FxHashMap<TypeId, (u32, u32)>,
+    /// Exact size and alignment of each type sized so far.
+    sizes: FxHashMap<TypeId, (u64, u32)>,
     fields: FxHashMap<TypeId, Vec<u32>>,
     pous: FxHashMap<PouId, PouLayout>,
+    /// Some type nests more than `MAX_DEPTH` levels deep.
+    pub too_deep: bool,
     /// Declared spellings of enumeration types and values, for the symbol
     /// table (see `symbols::spellings`).
     pub spellings: FxHashMap<automat_base::Symbol, String>,
@@ -75,6 +85,18 @@ pub struct Layout<'m> {
 pub fn align_up(x: u32, a: u32) -> u32 {
     let a = a.max(1);
     x.div_ceil(a).saturating_mul(a)
+}
+
+/// [`align_up`] on exact (64-bit) sizes.
+pub fn align_up64(x: u64, a: u32) -> u64 {
+    let a = u64::from(a.max(1));
+    x.div_ceil(a).saturating_mul(a)
+}
+
+/// An exact size or offset as the u32 the image uses (saturated: anything
+/// that large is refused by the image-size limit before it is used).
+pub fn narrow(x: u64) -> u32 {
+    u32::try_from(x).unwrap_or(u32::MAX)
 }
 
 /// The memory type of an elementary type.
@@ -118,6 +140,7 @@ impl<'m> Layout<'m> {
             sizes: FxHashMap::default(),
             fields: FxHashMap::default(),
             pous: FxHashMap::default(),
+            too_deep: false,
             spellings: FxHashMap::default(),
         }
     }
@@ -192,14 +215,23 @@ impl<'m> Layout<'m> {
 
     /// Size and alignment of a type.
     pub fn size(&mut self, ty: TypeId) -> (u32, u32) {
-        self.size_at(ty, 0)
+        let (s, a) = self.size_at(ty, 0);
+        (narrow(s), a)
     }
 
-    fn size_at(&mut self, ty: TypeId, depth: u32) -> (u32, u32) {
+    /// The exact size of a type in bytes.
+    pub fn bytes(&mut self, ty: TypeId) -> u64 {
+        self.size_at(ty, 0).0
+    }
+
+    fn size_at(&mut self, ty: TypeId, depth: u32) -> (u64, u32) {
         if let Some(s) = self.sizes.get(&ty) {
             return *s;
         }
         if depth > MAX_DEPTH {
+            // Not a cycle (the checker reports those): a real nesting this
+            // deep cannot be laid out; lowering refuses it (E091).
+            self.too_deep = true;
             return (0, 1);
         }
         let kind = self.model.types.get(ty).clone();
@@ -209,36 +241,34 @@ impl<'m> Layout<'m> {
             | TypeKind::Subrange { base: e, .. }
             | TypeKind::Enum { base: e, .. } => {
                 let n = mem_ty(e).size();
-                (n, n)
+                (u64::from(n), n)
             }
-            TypeKind::String { wide: false, len } => (2u32.saturating_add(len), 2),
-            TypeKind::String { wide: true, len } => (2u32.saturating_add(len.saturating_mul(2)), 2),
+            TypeKind::String { wide: false, len } => (2 + u64::from(len), 2),
+            TypeKind::String { wide: true, len } => (2 + 2 * u64::from(len), 2),
             TypeKind::Array { elem, dims } => {
                 let (es, ea) = self.size_at(elem, depth + 1);
-                let stride = align_up(es, ea);
-                let n = dims.iter().map(|d| d.len()).product::<u64>();
-                (
-                    u32::try_from(n.saturating_mul(stride as u64)).unwrap_or(u32::MAX),
-                    ea,
-                )
+                let stride = align_up64(es, ea);
+                let n = dims.iter().map(|d| d.len()).fold(1u64, u64::saturating_mul);
+                (n.saturating_mul(stride), ea)
             }
             TypeKind::Struct { members, .. } => {
-                let mut off = 0u32;
+                let mut off = 0u64;
                 let mut al = 1u32;
                 let mut offs = Vec::with_capacity(members.len());
                 for m in &members {
                     let (s, a) = self.size_at(m.ty, depth + 1);
-                    off = align_up(off, a);
-                    offs.push(off);
+                    off = align_up64(off, a);
+                    offs.push(narrow(off));
                     off = off.saturating_add(s);
                     al = al.max(a);
                 }
                 self.fields.insert(ty, offs);
-                (align_up(off, al), al)
+                (align_up64(off, al), al)
             }
             TypeKind::Fb { pou, .. } | TypeKind::Program { pou, .. } => {
-                let l = self.pou_at(pou, depth + 1);
-                (l.size, l.align)
+                // One level per type: the POU's variables are the next.
+                let l = self.pou_at(pou, depth);
+                (l.bytes, l.align)
             }
             TypeKind::Ref(_) => (4, 4),
         };
@@ -269,7 +299,7 @@ impl<'m> Layout<'m> {
         let Some(p) = self.model.pou(pou) else {
             return PouLayout::default();
         };
-        let mut off = 0u32;
+        let mut off = 0u64;
         let mut al = 1u32;
         let mut slots = Vec::with_capacity(p.vars.vars.len());
         for v in &p.vars.vars {
@@ -284,19 +314,19 @@ impl<'m> Layout<'m> {
             }
             let (s, a) = if v.section == Section::InOut {
                 // The address, then (for ARRAY[*]) the bounds the caller passes.
-                (4 + 8 * self.star_rank(v.ty).unwrap_or(0), 4)
+                (u64::from(4 + 8 * self.star_rank(v.ty).unwrap_or(0)), 4)
             } else {
                 self.size_at(v.ty, depth + 1)
             };
-            off = align_up(off, a);
-            slots.push(Slot::Rel(off));
+            off = align_up64(off, a);
+            slots.push(Slot::Rel(narrow(off)));
             off = off.saturating_add(s);
             al = al.max(a);
         }
         let mut edges = Vec::new();
         for (i, v) in p.vars.vars.iter().enumerate() {
             if v.edge.is_some() && v.section == Section::Input {
-                edges.push((i as u32, off));
+                edges.push((i as u32, narrow(off)));
                 off = off.saturating_add(1);
             }
         }
@@ -304,15 +334,17 @@ impl<'m> Layout<'m> {
         let eno = (p.kind == automat_syntax::ast::PouKind::FunctionBlock
             && p.vars.index(syms.eno).is_none())
         .then(|| {
-            let at = off;
+            let at = narrow(off);
             off = off.saturating_add(2);
             at
         });
+        let bytes = align_up64(off, al);
         let l = PouLayout {
             slots,
             edges,
             eno,
-            size: align_up(off, al),
+            size: narrow(bytes),
+            bytes,
             align: al,
         };
         self.pous.insert(pou, l.clone());

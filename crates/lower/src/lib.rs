@@ -54,6 +54,43 @@ pub fn lower(
     sources: &SourceMap,
     opts: &LowerOptions,
 ) -> Result<Program, Vec<Diagnostic>> {
+    lower_as(units, analysis, interner, sources, opts, false)
+}
+
+/// What [`lower`] would refuse in a checked project (no errors), for
+/// `automat check`: E091 (with the exact image size needed), E092, ...
+/// Without a CONFIGURATION every PROGRAM is lowered, as the one a run may
+/// choose, so no E090 (which program to run is the run's question); the
+/// programs share one place in the image, so the size checked is the
+/// largest a run needs.
+pub fn check(
+    units: &[SourceUnit],
+    analysis: &Analysis,
+    interner: &Interner,
+    sources: &SourceMap,
+) -> Vec<Diagnostic> {
+    match lower_as(
+        units,
+        analysis,
+        interner,
+        sources,
+        &LowerOptions::default(),
+        true,
+    ) {
+        Ok(_) => Vec::new(),
+        Err(diags) => diags,
+    }
+}
+
+/// `every_program`: see [`check`].
+fn lower_as(
+    units: &[SourceUnit],
+    analysis: &Analysis,
+    interner: &Interner,
+    sources: &SourceMap,
+    opts: &LowerOptions,
+    every_program: bool,
+) -> Result<Program, Vec<Diagnostic>> {
     let model = &analysis.model;
     let mut cx = Cx {
         model,
@@ -72,7 +109,7 @@ pub fn lower(
     };
     cx.layout.spellings = symbols::spellings(units, sources);
     let areas_end = cx.layout.size_areas(&addrs::in_bodies(units));
-    cx.top = areas_end;
+    cx.top = areas_end.into();
     let mut entries = Vec::new();
     let mut retain = Vec::new();
 
@@ -82,48 +119,81 @@ pub fn lower(
         global_tables.push(&c.globals);
         global_tables.extend(c.resources.iter().map(|r| &r.globals));
     }
+    // Everything is placed first and the image-size limit checked before
+    // any symbol type or image byte is built: a deep tree of FB instances
+    // (2^40 of them) is sized in microseconds from the per-type layouts, but
+    // enumerating it would take hours and terabytes.
     let mut global_inits = Vec::new();
+    let mut placed_globals = Vec::new();
     for t in &global_tables {
         for v in &t.vars {
             let (off, bit) = match v.location.as_ref().filter(|a| !a.partial) {
                 Some(a) => cx.layout.located(a),
                 None => {
-                    let (s, a) = cx.layout.size(v.ty);
+                    let (_, a) = cx.layout.size(v.ty);
+                    let s = cx.layout.bytes(v.ty);
                     (cx.alloc(s, a), None)
                 }
             };
             let bit =
                 bit.filter(|_| model.types.elem(v.ty) == Some(automat_sema::types::Elem::Bool));
             cx.globals.entry(v.name).or_insert((off, bit, v.ty));
-            let ty = symbols::symbol_type(&mut cx.layout, interner, v.ty, 0);
-            if v.retain == Retain::Retain {
-                let (s, _) = cx.layout.size(v.ty);
-                retain.push(off..off + s);
-            }
-            entries.push(SymbolEntry {
-                path: interner.name(v.name).to_string(),
-                offset: off,
-                bit,
-                ty,
-                retain: v.retain == Retain::Retain,
-                constant: v.constant,
-                output: false,
-                spelling: String::new(),
-            });
-            global_inits.push((off, bit, v.ty, v.init.clone()));
+            placed_globals.push((v, off, bit));
         }
     }
 
     // Program instances and tasks.
-    let instances = match tasks::instances(&mut cx, opts) {
+    let instances = match tasks::instances(&mut cx, opts, every_program) {
         Ok(i) => i,
         Err(d) => return Err(vec![d]),
     };
     let mut placed = Vec::new();
-    for pi in &instances {
-        let l = cx.layout.pou(pi.pou);
-        let off = cx.alloc(l.size, l.align.max(8));
-        placed.push(off);
+    if every_program && model.configs.is_empty() {
+        // Alternatives (a run picks one): all at one place, the largest's size.
+        let (size, align) = instances.iter().fold((0u64, 8u32), |(s, a), pi| {
+            let l = cx.layout.pou(pi.pou);
+            (s.max(l.bytes), a.max(l.align))
+        });
+        let at = cx.alloc(size, align);
+        placed.resize(instances.len(), at);
+    } else {
+        for pi in &instances {
+            let l = cx.layout.pou(pi.pou);
+            placed.push(cx.alloc(l.bytes, l.align.max(8)));
+        }
+    }
+
+    // Static frames of functions and templates of every POU.
+    for (i, p) in model.pous.iter().enumerate() {
+        let l = cx.layout.pou(PouId(i as u32));
+        if p.kind == PouKind::Function {
+            cx.frames[i] = Some(cx.alloc(l.bytes, l.align.max(8)));
+        }
+        cx.templates[i] = Some(cx.alloc(l.bytes, l.align.max(8)));
+    }
+    if let Some(d) = cx.too_large() {
+        return Err(vec![d]);
+    }
+
+    for &(v, off, bit) in &placed_globals {
+        let ty = symbols::symbol_type(&mut cx.layout, interner, v.ty, 0);
+        if v.retain == Retain::Retain {
+            let (s, _) = cx.layout.size(v.ty);
+            retain.push(off..off + s);
+        }
+        entries.push(SymbolEntry {
+            path: interner.name(v.name).to_string(),
+            offset: off,
+            bit,
+            ty,
+            retain: v.retain == Retain::Retain,
+            constant: v.constant,
+            output: false,
+            spelling: String::new(),
+        });
+        global_inits.push((off, bit, v.ty, v.init.clone()));
+    }
+    for (pi, &off) in instances.iter().zip(&placed) {
         instance_symbols(
             &mut cx,
             &mut entries,
@@ -133,15 +203,6 @@ pub fn lower(
             off,
             pi.retain,
         );
-    }
-
-    // Static frames of functions and templates of every POU.
-    for (i, p) in model.pous.iter().enumerate() {
-        let l = cx.layout.pou(PouId(i as u32));
-        if p.kind == PouKind::Function {
-            cx.frames[i] = Some(cx.alloc(l.size, l.align.max(8)));
-        }
-        cx.templates[i] = Some(cx.alloc(l.size, l.align.max(8)));
     }
 
     if let Err(d) = recursion::check(&cx) {
@@ -158,18 +219,12 @@ pub fn lower(
         return Err(cx.diags);
     }
 
-    // The initial image.
-    if cx.top > MAX_IMAGE {
-        return Err(vec![Diagnostic::error(
-            Code::E091,
-            Span::default(),
-            format!(
-                "the program needs {} bytes of memory, more than the {} bytes supported",
-                cx.top, MAX_IMAGE
-            ),
-        )]);
+    // The initial image (code generation allocated temporaries and
+    // constants since the first check).
+    if let Some(d) = cx.too_large() {
+        return Err(vec![d]);
     }
-    let image_size = align8(cx.top);
+    let image_size = align8(layout::narrow(cx.top));
     let mut w = image::ImageWriter {
         layout: &mut cx.layout,
         img: vec![0; image_size as usize],

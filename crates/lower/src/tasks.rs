@@ -16,7 +16,13 @@ pub struct Inst {
     pub retain: Retain,
 }
 
-pub fn instances(cx: &mut Cx, opts: &LowerOptions) -> Result<Vec<Inst>, Diagnostic> {
+/// The program instances; `every_program`: without a CONFIGURATION, one of
+/// each PROGRAM (see `crate::check`).
+pub fn instances(
+    cx: &mut Cx,
+    opts: &LowerOptions,
+    every_program: bool,
+) -> Result<Vec<Inst>, Diagnostic> {
     let model = cx.model;
     let name = |s| cx.interner.name(s).to_string();
     if !model.configs.is_empty() {
@@ -41,6 +47,17 @@ pub fn instances(cx: &mut Cx, opts: &LowerOptions) -> Result<Vec<Inst>, Diagnost
         .enumerate()
         .filter(|(_, p)| p.kind == PouKind::Program && !p.builtin)
         .collect();
+    if every_program {
+        return Ok(programs
+            .iter()
+            .map(|(i, p)| Inst {
+                name: name(p.name),
+                pou: PouId(*i as u32),
+                task: None,
+                retain: Retain::Unspecified,
+            })
+            .collect());
+    }
     let chosen = match &opts.program {
         Some(want) => programs
             .iter()

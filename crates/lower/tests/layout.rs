@@ -115,3 +115,118 @@ fn configuration_tasks_and_instances() {
     p.engine.cold_start();
     assert_eq!(p.int("A.n"), 0);
 }
+
+/// `Main` with n LREALs: an `ARRAY[0..n/1024-1] OF ARRAY[0..1023] OF LREAL`.
+fn array_program(n: u64) -> String {
+    format!(
+        "PROGRAM Main VAR a : ARRAY[0..{}] OF ARRAY[0..1023] OF LREAL; END_VAR a[0][0] := 1.0; END_PROGRAM",
+        n / 1024 - 1
+    )
+}
+
+#[test]
+fn the_image_limit_states_the_exact_size_needed_beyond_4_gib() {
+    // The program instance and its pristine template are 8n bytes each;
+    // everything else (the reserved bytes, the standard FBs' templates) is
+    // the same for any n: measure it on a program that fits.
+    let small = 1024u64;
+    let image = u64::from(build(&array_program(small)).engine.program().image_size);
+    let rest = image - 16 * small;
+    for n in [1u64 << 31, 1 << 40, 1 << 41] {
+        let errs = build_err(&array_program(n));
+        assert_eq!(
+            errs,
+            vec![(
+                "E091".to_string(),
+                format!(
+                    "the program needs {} bytes of memory, more than the 268435456 bytes supported",
+                    rest + 16 * n
+                )
+            )],
+            "n = {n}"
+        );
+    }
+}
+
+#[test]
+fn a_tree_of_2_pow_40_instances_is_refused_before_it_is_enumerated() {
+    // F40 holds two F39, ..., F1 two F0: 2^40 F0 instances. Sizing goes by
+    // type, so this is E091 at once (enumerating the tree for the symbol
+    // table or the initial image would never end).
+    let mut src =
+        String::from("FUNCTION_BLOCK F0 VAR x : INT; END_VAR x := x + 1; END_FUNCTION_BLOCK\n");
+    for i in 1..=40 {
+        src += &format!(
+            "FUNCTION_BLOCK F{i} VAR a, b : F{}; END_VAR a(); b(); END_FUNCTION_BLOCK\n",
+            i - 1
+        );
+    }
+    src += "PROGRAM Main VAR t : F40; END_VAR t(); END_PROGRAM\n";
+    let errs = build_err(&src);
+    assert_eq!(errs.len(), 1);
+    assert_eq!(errs[0].0, "E091");
+    // F0 is 4 bytes (x and the hidden EN/ENO), Fi = 2 F(i-1) + 2: Fi is
+    // 6 * 2^i - 2 bytes. Main holds one F40 (and so does its template);
+    // each Fi has a template (8-aligned).
+    let f = |i: u32| 6 * (1u64 << i) - 2;
+    let templates: u64 = (0..=40).map(|i| f(i).div_ceil(8) * 8).sum();
+    let needed: u64 = errs[0].1["the program needs ".len()..]
+        .split(' ')
+        .next()
+        .and_then(|n| n.parse().ok())
+        .expect("a number of bytes");
+    let fixed = 2 * f(40).div_ceil(8) * 8 + templates;
+    // The rest (reserved bytes, standard FB templates) is a few KiB.
+    assert!(needed > fixed && needed < fixed + 65536, "{}", errs[0].1);
+}
+
+#[test]
+fn types_nested_too_deep_are_refused_not_laid_out_as_nothing() {
+    let mut src =
+        String::from("FUNCTION_BLOCK F0 VAR x : INT; END_VAR x := x + 1; END_FUNCTION_BLOCK\n");
+    for i in 1..=70 {
+        src += &format!(
+            "FUNCTION_BLOCK F{i} VAR a : F{}; END_VAR a(); END_FUNCTION_BLOCK\n",
+            i - 1
+        );
+    }
+    src += "PROGRAM Main VAR t : F70; END_VAR t(); END_PROGRAM\n";
+    assert_eq!(
+        build_err(&src),
+        vec![(
+            "E091".to_string(),
+            "types nest more than 64 levels deep (arrays, structures and FB instances within each other)".to_string()
+        )]
+    );
+    // 60 levels are fine.
+    let mut src =
+        String::from("FUNCTION_BLOCK F0 VAR x : INT; END_VAR x := x + 1; END_FUNCTION_BLOCK\n");
+    for i in 1..=60 {
+        src += &format!(
+            "FUNCTION_BLOCK F{i} VAR a : F{}; END_VAR a(); END_FUNCTION_BLOCK\n",
+            i - 1
+        );
+    }
+    src += "PROGRAM Main VAR t : F60; END_VAR t(); END_PROGRAM\n";
+    let mut p = build(&src);
+    p.run(3);
+    let path = format!("Main.t{}.x", ".a".repeat(60));
+    assert_eq!(p.int(&path), 3);
+}
+
+#[test]
+fn the_checker_and_the_image_agree_on_the_longest_string() {
+    assert_eq!(
+        automat_sema::types::MAX_STRING_LEN,
+        automat_ir::strbuf::MAX_LEN
+    );
+    let errs = build_err("PROGRAM Main VAR s : STRING[32768]; END_VAR s := 'a'; END_PROGRAM");
+    assert_eq!(
+        errs,
+        vec![(
+            "E072".to_string(),
+            "string length must be between 1 and 32767 (LEN and positions are INT), found 32768"
+                .to_string()
+        )]
+    );
+}

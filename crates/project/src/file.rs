@@ -20,6 +20,7 @@
 //! same); values are booleans, numbers or IEC literals in a string
 //! (`"T#5s"`, `"Mode#Hand"`).
 
+use crate::folder::{Entry, Walk};
 use automat_base::{Code, Diagnostic, FileId, SourceMap, Span};
 use automat_plant::{models, Plant};
 use serde::Deserialize;
@@ -178,6 +179,10 @@ pub struct Project {
     pub users: Vec<UserSpec>,
     /// `[tasks.NAME]` tables, applied with [`crate::tasks::apply`].
     pub tasks: Vec<TaskSpec>,
+    /// What loading has to say without failing: source files or folders
+    /// reached twice through symbolic links (see [`crate::folder`]), as
+    /// `warning: ...` lines for the caller to print.
+    pub warnings: Vec<String>,
 }
 
 impl Project {
@@ -303,7 +308,8 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
             }
         },
     };
-    let sources = match sources(&dir, file, raw.project.sources.as_deref()) {
+    let mut walk = Walk::new();
+    let sources = match sources(&dir, file, raw.project.sources.as_deref(), &mut walk) {
         Ok(s) => s,
         Err(d) => {
             errors.push(d);
@@ -374,6 +380,7 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
         retain,
         safe_state,
         users,
+        warnings: walk.warning().into_iter().collect(),
     })
 }
 
@@ -501,36 +508,29 @@ fn is_st(p: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("st"))
 }
 
-/// Every `*.st` under `dir` (recursively when `deep`), sorted.
-fn st_files(dir: &Path, deep: bool, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
-    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .collect();
-    entries.sort();
-    for p in entries {
-        if p.is_dir() {
-            if deep {
-                st_files(&p, deep, out)?;
-            }
-        } else if is_st(&p) {
-            out.push(p);
-        }
-    }
-    Ok(())
+/// Every `*.st` under `dir` (recursively when `deep`), sorted, each file
+/// once.
+fn st_files(dir: &Path, deep: bool, walk: &mut Walk, out: &mut Vec<PathBuf>) -> Result<(), String> {
+    let mut keep = |e: Entry| match e {
+        Entry::Dir(_) => deep,
+        Entry::File(p) => is_st(p),
+    };
+    walk.dir(dir, &mut keep, out)
 }
 
 fn sources(
     dir: &Path,
     file: FileId,
     listed: Option<&[Spanned<String>]>,
+    walk: &mut Walk,
 ) -> Result<Vec<PathBuf>, Diagnostic> {
     let mut out = Vec::new();
     match listed {
-        None => st_files(dir, false, &mut out).map_err(|e| {
+        None => st_files(dir, false, walk, &mut out).map_err(|e| {
             Diagnostic::error(
                 Code::E308,
                 Span::new(file, 0, 0),
-                format!("cannot list {}: {e}", dir.display()),
+                format!("cannot list {e}"),
             )
         })?,
         Some(list) => {
@@ -544,9 +544,11 @@ fn sources(
                     )
                 };
                 if p.is_dir() {
-                    st_files(&p, true, &mut out).map_err(|e| err(e.to_string()))?;
+                    st_files(&p, true, walk, &mut out).map_err(err)?;
                 } else if p.is_file() {
-                    out.push(p);
+                    if walk.first_visit(&p).map_err(err)? {
+                        out.push(p);
+                    }
                 } else {
                     return Err(err("no such file or folder".into()));
                 }

@@ -3,6 +3,8 @@
 //!
 //! - [`file`]: the project file (`[project]`, `[plant]`, `[plant.params]`,
 //!   `[bind]`, `[retain]`, `[safe_state]`, `[tasks.NAME]`) with `file:line:col` diagnostics (E300–E308).
+//! - [`folder`]: walking source folders, each file once whatever the
+//!   symbolic links.
 //! - [`bind`]: signals → PLC variables, checked at load.
 //! - [`image`]: plant values in and out of the memory image.
 //! - [`sim`]: the coupling of the model to the scan, with overrides
@@ -20,6 +22,7 @@ pub mod bind;
 pub mod build;
 pub mod exec;
 pub mod file;
+pub mod folder;
 pub mod image;
 pub mod safe;
 pub mod sim;

@@ -6,6 +6,7 @@
 
 use crate::path::{Place, PlaceType};
 use automat_iec::{format_value, Elementary as E, Value};
+use automat_ir::strbuf;
 
 fn bytes<const N: usize>(image: &[u8], offset: u32) -> Option<[u8; N]> {
     let start = usize::try_from(offset).ok()?;
@@ -53,28 +54,26 @@ pub fn read_elementary(image: &[u8], offset: u32, bit: Option<u8>, ty: E) -> Opt
 }
 
 /// Bytes of the length field in front of a STRING's or WSTRING's
-/// characters.
-pub const STRING_LEN_BYTES: u32 = 2;
+/// characters (the field itself is `automat_ir::strbuf`'s).
+pub const STRING_LEN_BYTES: u32 = strbuf::LEN_BYTES;
 
-/// The stored length (in characters) of the STRING or WSTRING at `offset`:
-/// the one place the runtime reads that field, so its width is known here
-/// only. `None` when it is not inside the image.
+/// The stored length (in characters) of the STRING or WSTRING at `offset`,
+/// through `automat_ir::strbuf`, the one place that knows the field's
+/// width. `None` when it is not inside the image.
 pub fn string_len(image: &[u8], offset: u32) -> Option<u32> {
-    Some(u16::from_le_bytes(bytes(image, offset)?).into())
+    strbuf::len(image, offset)
 }
 
 /// Writes the length field of the STRING or WSTRING at `offset`; `None`
-/// when it is not inside the image or `len` does not fit the field.
+/// when it is not inside the image or `len` is beyond the longest string.
 pub fn put_string_len(image: &mut [u8], offset: u32, len: u32) -> Option<()> {
-    let b = u16::try_from(len).ok()?.to_le_bytes();
-    let start = usize::try_from(offset).ok()?;
-    image
-        .get_mut(start..start.checked_add(b.len())?)?
-        .copy_from_slice(&b);
-    Some(())
+    if len > strbuf::MAX_LEN {
+        return None;
+    }
+    strbuf::set_len(image, offset, len)
 }
 
-/// The start of the characters of the string at `offset`.
+/// Where the characters of the string at `offset` start.
 fn chars_start(offset: u32) -> Option<usize> {
     usize::try_from(offset.checked_add(STRING_LEN_BYTES)?).ok()
 }

@@ -235,6 +235,12 @@ pub struct PouId(pub u32);
 /// The default length of `STRING` and `WSTRING`.
 pub const DEFAULT_STRING_LEN: u32 = 80;
 
+/// The longest declarable STRING/WSTRING (E072 beyond): `LEN` returns an
+/// INT and positions are INTs, so 32,767 characters keep every length and
+/// position exact (the image's 16-bit length field holds it;
+/// `automat_ir::strbuf::MAX_LEN` is equal, by a test in `crates/lower`).
+pub const MAX_STRING_LEN: u32 = 32_767;
+
 /// One dimension of an array: `lo..hi`, or `*` (a VAR_IN_OUT of any length).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Dim {

@@ -5,6 +5,7 @@ use super::{Failed, Gen, Lv, Res, Shape, Val, V};
 use crate::image::scalar_bits;
 use crate::layout::{mem_ty, Slot};
 use automat_ir::code::{Addr, CheckKind, Inst, IntOp, RegClass};
+use automat_ir::strbuf;
 use automat_sema::ops::Ty;
 use automat_sema::types::{Elem, TypeId, TypeKind};
 use automat_sema::value::Value;
@@ -144,21 +145,26 @@ impl Gen<'_, '_> {
         Ok(Val { v, ty })
     }
 
-    /// A string constant placed in the image.
+    /// A string constant placed in the image. A literal longer than the
+    /// longest string keeps its first `strbuf::MAX_LEN` characters: no
+    /// variable could hold more (an assignment truncates to the declared
+    /// length anyway).
     pub fn const_str(&mut self, s: &str, wide: bool) -> u32 {
+        let max = strbuf::MAX_LEN as usize;
         let mut bytes = Vec::new();
         if wide {
-            let units: Vec<u16> = s.encode_utf16().collect();
-            bytes.extend_from_slice(&(units.len() as u16).to_le_bytes());
+            let units: Vec<u16> = s.encode_utf16().take(max).collect();
+            bytes.extend_from_slice(&strbuf::header(units.len() as u32));
             for u in units {
                 bytes.extend_from_slice(&u.to_le_bytes());
             }
         } else {
             let b: Vec<u8> = s
                 .chars()
+                .take(max)
                 .map(|c| if (c as u32) < 256 { c as u8 } else { b'?' })
                 .collect();
-            bytes.extend_from_slice(&(b.len() as u16).to_le_bytes());
+            bytes.extend_from_slice(&strbuf::header(b.len() as u32));
             bytes.extend_from_slice(&b);
         }
         let at = self.cx.alloc(bytes.len() as u32, 2);

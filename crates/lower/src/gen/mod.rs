@@ -87,6 +87,10 @@ pub struct Gen<'c, 'a> {
     /// one, so a POU needs only as many as its busiest statement.
     temps: Vec<(u32, u32)>,
     temps_used: usize,
+    /// The capacity (characters) each string temporary was last handed out
+    /// with, by image offset: the most a string function result in it can
+    /// hold, which sizes the result of a function taking it.
+    pub str_caps: rustc_hash::FxHashMap<u32, u32>,
     /// The last instruction index handed out by [`Gen::here`]: a possible
     /// jump target, where a value from the previous instruction cannot be
     /// reused.
@@ -115,6 +119,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             star: rustc_hash::FxHashMap::default(),
             temps: Vec::new(),
             temps_used: 0,
+            str_caps: rustc_hash::FxHashMap::default(),
             label: std::cell::Cell::new(u32::MAX),
             labels: rustc_hash::FxHashMap::default(),
             gotos: Vec::new(),
@@ -416,8 +421,11 @@ impl<'c, 'a> Gen<'c, 'a> {
 
     /// A temporary string buffer of `cap` characters in the image.
     pub fn temp_str(&mut self, wide: bool, cap: u32) -> Addr {
-        let size = 2 + cap * if wide { 2 } else { 1 };
-        self.temp(size)
+        let cap = cap.min(automat_ir::strbuf::MAX_LEN);
+        let size = automat_ir::strbuf::LEN_BYTES + cap * if wide { 2 } else { 1 };
+        let at = self.temp(size);
+        self.str_caps.insert(at.offset, cap);
+        at
     }
 
     /// A scratch buffer of `size` bytes (8-aligned) for the current statement.

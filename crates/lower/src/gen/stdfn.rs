@@ -5,15 +5,15 @@
 use super::{Failed, Gen, Res, Shape, Val, V};
 use crate::symbols::elementary;
 use automat_ir::code::{
-    Builtin, CheckKind, Cmp, Inst, IntOp, MathFn, Reg, RegClass, ShiftOp, StrFn, TimeFn,
+    Addr, Base, Builtin, CheckKind, Cmp, Inst, IntOp, MathFn, Reg, RegClass, ShiftOp, StrFn, TimeFn,
 };
 use automat_sema::ops::Ty;
 use automat_sema::stdlib::{ConvTy, Sig, StdOp};
 use automat_sema::types::{Elem, TypeId};
 use automat_syntax::ast::{Arg, BinaryOp, Expr};
 
-/// Capacity of the temporary that holds a string function's result; the
-/// assignment that follows truncates to the destination's length.
+/// Capacity of the temporary that holds a conversion's result (a number,
+/// time or date as text): longer than any such text, so never a cut.
 const TEMP_CAP: u32 = 1024;
 
 impl Gen<'_, '_> {
@@ -57,15 +57,16 @@ impl Gen<'_, '_> {
         use StdOp::*;
         match sig.op {
             Convert { from, to } => {
-                let v = self.expr(arg(0)?, Some(conv_ty(from)))?;
-                self.convert(v, conv_ty(to), e)
+                let x = arg(0)?;
+                let v = self.expr(x, Some(conv_ty(from)))?;
+                self.convert(v, x, conv_ty(to), e)
             }
             ToType(to) => {
                 let x = arg(0)?;
                 let t = self.typed(x);
                 let from = self.concrete(t.ty, None, t.value.as_ref()).ok_or(Failed)?;
                 let v = self.expr(x, Some(from))?;
-                self.convert(v, conv_ty(to), e)
+                self.convert(v, x, conv_ty(to), e)
             }
             Trunc(to) => {
                 let x = arg(0)?;
@@ -351,7 +352,7 @@ impl Gen<'_, '_> {
             }
             Len | Find => {
                 let wide = self.str_arg_wide(&xs)?;
-                let regs = self.str_regs(&xs, wide, &[])?;
+                let (regs, _) = self.str_regs(&xs, wide, &[])?;
                 let d = self.reg(RegClass::I64);
                 let f = if sig.op == Len {
                     StrFn::Len
@@ -385,10 +386,23 @@ impl Gen<'_, '_> {
                     Delete => StrFn::Delete,
                     _ => StrFn::Replace,
                 };
-                let regs = self.str_regs(&xs, wide, ints)?;
-                let out = self.temp_str(wide, TEMP_CAP);
+                let (regs, bounds) = self.str_regs(&xs, wide, ints)?;
+                // The result holds all it can be (LEFT, RIGHT, MID, DELETE
+                // at most their input; CONCAT, INSERT, REPLACE the inputs
+                // together), up to the longest string: only the assignment
+                // of the result truncates, to the destination's length.
+                let first = bounds.first().copied().unwrap_or(0);
+                let result = match f {
+                    StrFn::Concat => bounds.iter().fold(0u32, |a, b| a.saturating_add(*b)),
+                    StrFn::Insert | StrFn::Replace => {
+                        first.saturating_add(bounds.get(1).copied().unwrap_or(0))
+                    }
+                    _ => first,
+                };
+                let result = result.min(automat_ir::strbuf::MAX_LEN);
+                let out = self.temp_str(wide, result);
                 let d = self.addr_reg(out);
-                let cap = self.iconst(TEMP_CAP as i64);
+                let cap = self.iconst(i64::from(result));
                 let mut all = vec![d, cap];
                 all.extend(regs);
                 self.builtin(Builtin::Str(f, wide), None, &all, e.span);
@@ -429,8 +443,8 @@ impl Gen<'_, '_> {
         }
     }
 
-    /// An explicit conversion (`*_TO_*`, `TO_*`).
-    fn convert(&mut self, v: Val, to: TypeId, e: &Expr) -> Res<Val> {
+    /// An explicit conversion (`*_TO_*`, `TO_*`) of `v`, the value of `x`.
+    fn convert(&mut self, v: Val, x: &Expr, to: TypeId, e: &Expr) -> Res<Val> {
         match (self.shape(v.ty), self.shape(to)) {
             (Shape::Int(_), Shape::Int(_)) => self.coerce(v, to, e.span),
             (Shape::Int(a), Shape::Str { wide, .. }) => {
@@ -474,9 +488,11 @@ impl Gen<'_, '_> {
             }
             (Shape::Str { .. }, Shape::Str { wide, .. }) => {
                 let V::M(src) = v.v else { return Err(Failed) };
-                let out = self.temp_str(wide, TEMP_CAP);
+                // As long as the source can be (a WCHAR per CHAR or back).
+                let n = self.str_bound(Some(x), &v, src);
+                let out = self.temp_str(wide, n);
                 let d = self.addr_reg(out);
-                let cap = self.iconst(TEMP_CAP as i64);
+                let cap = self.iconst(i64::from(n));
                 let s = self.addr_reg(src);
                 self.builtin(Builtin::StrConv(wide), None, &[d, cap, s], e.span);
                 Ok(Val {
@@ -544,25 +560,58 @@ impl Gen<'_, '_> {
     }
 
     /// Registers for string function arguments: addresses for strings,
-    /// values for the integer positions listed in `ints`.
-    fn str_regs(&mut self, xs: &[&Expr], wide: bool, ints: &[usize]) -> Res<Vec<Reg>> {
+    /// values for the integer positions listed in `ints`; and for each
+    /// string argument, in order, the most characters it can hold.
+    fn str_regs(&mut self, xs: &[&Expr], wide: bool, ints: &[usize]) -> Res<(Vec<Reg>, Vec<u32>)> {
         let st = if wide {
             TypeId::WSTRING
         } else {
             TypeId::STRING
         };
         let mut out = Vec::with_capacity(xs.len());
+        let mut bounds = Vec::new();
         for (i, x) in xs.iter().enumerate() {
             if ints.contains(&i) {
                 out.push(self.int_expr(x)?);
             } else {
                 let v = self.expr(x, Some(st))?;
                 match v.v {
-                    V::M(a) => out.push(self.addr_reg(a)),
+                    V::M(a) => {
+                        bounds.push(self.str_bound(Some(x), &v, a));
+                        out.push(self.addr_reg(a));
+                    }
                     _ => return Err(self.error(x.span, "a string is needed here".into())),
                 }
             }
         }
-        Ok(out)
+        Ok((out, bounds))
+    }
+
+    /// The most characters the string `v` (the value of `x`, at `a`) can
+    /// hold: a function result's temporary its capacity, a constant its
+    /// length, a variable its declared length.
+    fn str_bound(&self, x: Option<&Expr>, v: &Val, a: Addr) -> u32 {
+        if a.base == Base::Abs {
+            if let Some(&cap) = self.str_caps.get(&a.offset) {
+                return cap;
+            }
+        }
+        let typed = x.map(|x| self.typed(x));
+        if let Some(automat_sema::value::Value::Str(s)) =
+            typed.as_ref().and_then(|t| t.value.as_ref())
+        {
+            let n = s.chars().count().max(s.encode_utf16().count());
+            return u32::try_from(n).unwrap_or(u32::MAX);
+        }
+        // The declared type (the value's is the one the function wants).
+        if let Some(Ty::Of(t)) = typed.map(|t| t.ty) {
+            if let Shape::Str { cap, .. } = self.shape(t) {
+                return cap;
+            }
+        }
+        match self.shape(v.ty) {
+            Shape::Str { cap, .. } => cap,
+            _ => automat_ir::strbuf::MAX_LEN,
+        }
     }
 }

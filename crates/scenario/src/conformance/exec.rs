@@ -88,6 +88,7 @@ pub fn check_on(
             }
             observe(&mut engine, spec)
         }
+        #[cfg(feature = "jit")]
         Backend::Jit => {
             let mut jit =
                 automat_jit::Jit::new(program).map_err(|e| format!("the JIT refused it: {e}"))?;
@@ -96,6 +97,8 @@ pub fn check_on(
             }
             observe(&mut jit, spec)
         }
+        #[cfg(not(feature = "jit"))]
+        Backend::Jit => Err("automat-scenario was built without its `jit` feature".to_string()),
     }
 }
 

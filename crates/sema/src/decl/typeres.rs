@@ -4,14 +4,13 @@
 
 use super::{Builder, TypeState, MAX_DEPTH};
 use crate::lattice::int_fits;
-use crate::types::{Dim, Elem, EnumVal, Member, TypeId, TypeKind};
+use crate::types::{Dim, Elem, EnumVal, Member, TypeId, TypeKind, MAX_STRING_LEN};
 use crate::value::{ArrayInit, Init};
 use automat_base::{Code, Diagnostic, Span, Symbol};
 use automat_syntax::ast::{ArrayDim, Expr, Ident, PouKind, TypeSpec};
 use rustc_hash::FxHashMap;
 
 /// The longest string type accepted.
-const MAX_STRING_LEN: i128 = 1 << 24;
 /// The most elements an array type may have.
 const MAX_ARRAY_ELEMS: u64 = 1 << 31;
 
@@ -123,12 +122,15 @@ impl<'a> Builder<'a> {
                 let len = match len {
                     None => crate::types::DEFAULT_STRING_LEN,
                     Some(e) => match self.fold_int(e, scope, "a string length") {
-                        Some(n) if (1..=MAX_STRING_LEN).contains(&n) => n as u32,
+                        Some(n) if (1..=i128::from(MAX_STRING_LEN)).contains(&n) => n as u32,
                         Some(n) => {
                             self.emit(Diagnostic::error(
                                 Code::E072,
                                 e.span,
-                                format!("string length must be between 1 and {MAX_STRING_LEN}, found {n}"),
+                                format!(
+                                    "string length must be between 1 and {MAX_STRING_LEN} \
+                                     (LEN and positions are INT), found {n}"
+                                ),
                             ));
                             return (TypeId::ERROR, None);
                         }

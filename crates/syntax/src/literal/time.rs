@@ -108,14 +108,20 @@ pub fn duration(body: &str, long: bool) -> Result<LitKind, LitError> {
             "expected a number and a unit, as in `T#5s`",
         ));
     }
-    Ok(LitKind::Duration {
-        nanos: if neg { -total } else { total },
-        long,
-    })
+    let nanos = if neg { -total } else { total };
+    // TIME and LTIME are both 64-bit nanoseconds: a longer literal would
+    // wrap to a wrong (often negative) duration in the image.
+    if i64::try_from(nanos).is_err() {
+        return Err(too_long(body));
+    }
+    Ok(LitKind::Duration { nanos, long })
 }
 
 fn too_long(body: &str) -> LitError {
-    LitError::OutOfRange(format!("duration literal `{body}` is too long"))
+    LitError::OutOfRange(format!(
+        "duration literal `{body}` is too long: TIME and LTIME hold \
+         -106751d23h47m16s854ms775us808ns to 106751d23h47m16s854ms775us807ns"
+    ))
 }
 
 /// Digits (underscores ignored) as an integer, `None` on overflow.
@@ -321,6 +327,36 @@ mod tests {
             duration(&format!("{}d", "9".repeat(60)), false),
             Err(LitError::OutOfRange(_))
         ));
+    }
+
+    #[test]
+    fn durations_fit_in_64_bit_nanoseconds() {
+        let max = "106751d23h47m16s854ms775us807ns";
+        assert_eq!(dur(max), i128::from(i64::MAX));
+        assert_eq!(
+            dur("-106751d23h47m16s854ms775us808ns"),
+            i128::from(i64::MIN)
+        );
+        for s in [
+            "106751d23h47m16s854ms775us808ns",
+            "-106751d23h47m16s854ms775us809ns",
+            "106752d",
+            "9223372036854775808ns",
+            "2562048h",
+        ] {
+            for long in [false, true] {
+                match duration(s, long) {
+                    Err(LitError::OutOfRange(m)) => assert_eq!(
+                        m,
+                        format!(
+                            "duration literal `{s}` is too long: TIME and LTIME hold \
+                             -106751d23h47m16s854ms775us808ns to {max}"
+                        )
+                    ),
+                    other => panic!("{s}: {other:?}"),
+                }
+            }
+        }
     }
 
     #[test]
