@@ -74,7 +74,7 @@ fn walk(p: &Path, given: bool, out: &mut Vec<Item>) -> Result<(), String> {
         .map(str::to_ascii_lowercase);
     match ext.as_deref() {
         Some("scn") => out.push(Item::Scenario(p.to_path_buf())),
-        Some("st") => {
+        Some("st" | "xml") => {
             let text = std::fs::read(p).map_err(|e| format!("{}: {e}", p.display()))?;
             if conformance::is_conformance(&String::from_utf8_lossy(&text)) {
                 out.push(Item::Conformance(p.to_path_buf()));
