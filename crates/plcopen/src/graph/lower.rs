@@ -257,8 +257,92 @@ impl<'n> L<'n> {
         }
     }
 
+    /// The standard functions spelled as ST operators (`AND` cannot be
+    /// called by name in ST): `(a AND b AND …)`, `(NOT a)`, `(a MOD b)`.
+    fn operator(&mut self, out: &mut Vec<Piece>, e: &Element, callee: &Text) -> bool {
+        let op = callee.text.to_ascii_uppercase();
+        if !matches!(op.as_str(), "AND" | "OR" | "XOR" | "NOT" | "MOD") {
+            return false;
+        }
+        let idx = self.by_id.get(&e.id).copied().unwrap_or(0);
+        let ins: Vec<&PinIn> = e
+            .inputs
+            .iter()
+            .filter(|p| !p.formal.as_deref().unwrap_or("").eq_ignore_ascii_case("EN"))
+            .collect();
+        let en = ins.len() < e.inputs.len();
+        if en || self.eno_read.get(idx).copied().unwrap_or(false) {
+            self.err(
+                Code::E171,
+                e.span,
+                e,
+                format!("EN/ENO on the `{op}` operator block are not supported"),
+            );
+        }
+        let arity_ok = match op.as_str() {
+            "NOT" => ins.len() == 1,
+            "MOD" => ins.len() == 2,
+            _ => ins.len() >= 2,
+        };
+        if !arity_ok {
+            self.err(Code::E171, e.span, e, format!("`{op}` with {} inputs", ins.len()));
+            out.push(Piece::Gen("FALSE".into(), e.span));
+            return true;
+        }
+        out.push(Piece::Gen(if op == "NOT" { "(NOT " } else { "(" }.into(), e.span));
+        for (k, p) in ins.iter().enumerate() {
+            if k > 0 {
+                out.push(Piece::Gen(format!(" {op} "), p.span));
+            }
+            if p.conns.is_empty() {
+                let formal = p.formal.clone().unwrap_or_default();
+                self.err(Code::E173, p.span, e, format!("input `{formal}` of `{op}` is not connected"));
+                out.push(Piece::Gen("FALSE".into(), p.span));
+            } else {
+                out.push(Piece::Gen("(".into(), p.span));
+                self.pin(out, e, p);
+                out.push(Piece::Gen(")".into(), p.span));
+            }
+        }
+        out.push(Piece::Gen(")".into(), e.span));
+        true
+    }
+
+    /// A VAR_IN_OUT pin: the variable itself (no parentheses: it is
+    /// written), so the wire must come from a variable element.
+    fn in_out_arg(&mut self, out: &mut Vec<Piece>, e: &Element, p: &PinIn) {
+        let var = match p.conns.as_slice() {
+            [c] => self
+                .by_id
+                .get(&c.from)
+                .copied()
+                .map(|i| self.el(i))
+                .and_then(|s| match &s.kind {
+                    Kind::InVar { negated: false, expr } | Kind::InOutVar { expr } => Some(expr.clone()),
+                    _ => None,
+                }),
+            _ => None,
+        };
+        match var {
+            Some(t) => out.push(Piece::Copy(t)),
+            None => {
+                let formal = p.formal.clone().unwrap_or_default();
+                self.err(
+                    Code::E171,
+                    p.span,
+                    e,
+                    format!("the VAR_IN_OUT pin `{formal}` must be wired to one variable"),
+                );
+                out.push(Piece::Gen("FALSE".into(), p.span));
+            }
+        }
+    }
+
     /// `F(IN1 := …, …, ENO => __ld_eno<id>)` or `inst(EN := …, IN := …)`.
     fn call(&mut self, out: &mut Vec<Piece>, e: &Element, callee: &Text) {
+        if is_function(e) && self.operator(out, e, callee) {
+            return;
+        }
         let idx = self.by_id.get(&e.id).copied().unwrap_or(0);
         out.push(Piece::Copy(callee.clone()));
         out.push(Piece::Gen("(".into(), e.span));
@@ -285,7 +369,9 @@ impl<'n> L<'n> {
             }
             first = false;
             out.push(Piece::Gen(format!("{formal} := "), p.span));
-            if p.edge != EdgeKind::None {
+            if p.in_out {
+                self.in_out_arg(out, e, p);
+            } else if p.edge != EdgeKind::None {
                 out.push(Piece::Gen(format!("__ld_e{}_{k}", e.id), p.span));
             } else {
                 self.pin(out, e, p);
@@ -437,6 +523,12 @@ impl<'n> L<'n> {
                         type_name.text
                     );
                     self.err(Code::E176, e.span, e, msg);
+                    return;
+                }
+                if instance.is_none()
+                    && matches!(type_name.text.to_ascii_uppercase().as_str(), "AND" | "OR" | "XOR" | "NOT" | "MOD")
+                {
+                    // An operator whose result nothing reads does nothing.
                     return;
                 }
                 self.pin_edges(out, e);
