@@ -57,7 +57,11 @@ impl Imp<'_> {
         self.out.copy(&name);
         self.gen(" (", t);
         let mut first = true;
-        for (attr, prop) in [("single", "SINGLE"), ("interval", "INTERVAL"), ("priority", "PRIORITY")] {
+        for (attr, prop) in [
+            ("single", "SINGLE"),
+            ("interval", "INTERVAL"),
+            ("priority", "PRIORITY"),
+        ] {
             let Some(v) = xml::attr(self.src, t, attr) else {
                 continue;
             };
@@ -96,7 +100,11 @@ impl Imp<'_> {
         self.gen(";\n", i);
         if xml::elements(i).any(|e| !matches!(e.tag_name().name(), "documentation" | "addData")) {
             let sp = self.span(i);
-            self.error(Code::E171, sp, "connections of a program instance are not supported");
+            self.error(
+                Code::E171,
+                sp,
+                "connections of a program instance are not supported",
+            );
         }
     }
 }

@@ -54,7 +54,11 @@ impl Imp<'_> {
         };
         let Some(base) = xml::child(dt, "baseType") else {
             let sp = self.span(dt);
-            self.error(Code::E171, sp, format!("data type `{}` has no `baseType`", name.text));
+            self.error(
+                Code::E171,
+                sp,
+                format!("data type `{}` has no `baseType`", name.text),
+            );
             return;
         };
         self.gen("\nTYPE ", dt);
@@ -94,7 +98,11 @@ impl Imp<'_> {
         };
         let Some(ty) = xml::child(v, "type") else {
             let sp = self.span(v);
-            self.error(Code::E171, sp, format!("variable `{}` has no `type`", name.text));
+            self.error(
+                Code::E171,
+                sp,
+                format!("variable `{}` has no `type`", name.text),
+            );
             return;
         };
         self.out.copy(&name);
@@ -148,7 +156,11 @@ impl Imp<'_> {
                         self.gen(&format!("[{n}]"), t);
                     } else {
                         let sp = self.span(t);
-                        self.error(Code::E171, sp, format!("string length `{len}` is not a number"));
+                        self.error(
+                            Code::E171,
+                            sp,
+                            format!("string length `{len}` is not a number"),
+                        );
                     }
                 }
             }
@@ -217,7 +229,14 @@ impl Imp<'_> {
             "subrangeSigned" | "subrangeUnsigned" => {
                 match xml::child(t, "baseType") {
                     Some(b) => self.type_of(b, false),
-                    None => self.gen(if tag == "subrangeSigned" { "DINT" } else { "UDINT" }, t),
+                    None => self.gen(
+                        if tag == "subrangeSigned" {
+                            "DINT"
+                        } else {
+                            "UDINT"
+                        },
+                        t,
+                    ),
                 }
                 self.gen(" (", t);
                 match xml::child(t, "range") {
@@ -269,17 +288,26 @@ impl Imp<'_> {
     fn bound(&mut self, n: Node, attr: &str) {
         let Some(t) = xml::attr(self.src, n, attr) else {
             let sp = self.span(n);
-            self.error(Code::E171, sp, format!("`{}` without `{attr}`", n.tag_name().name()));
+            self.error(
+                Code::E171,
+                sp,
+                format!("`{}` without `{attr}`", n.tag_name().name()),
+            );
             self.gen("0", n);
             return;
         };
         let t = t.trimmed();
         let s = t.text.strip_prefix('-').unwrap_or(&t.text);
-        if !s.is_empty() && (s.chars().all(|c| c.is_ascii_digit() || c == '_') || is_identifier(s)) {
+        if !s.is_empty() && (s.chars().all(|c| c.is_ascii_digit() || c == '_') || is_identifier(s))
+        {
             self.out.copy(&t);
         } else {
             let sp = t.span(self.file);
-            self.error(Code::E171, sp, format!("bound `{}` is not an integer", t.text));
+            self.error(
+                Code::E171,
+                sp,
+                format!("bound `{}` is not an integer", t.text),
+            );
             self.gen("0", n);
         }
     }
@@ -341,7 +369,11 @@ impl Imp<'_> {
             }
             other => {
                 let sp = self.span(v);
-                self.error(Code::E171, sp, format!("unknown initial value element `{other}`"));
+                self.error(
+                    Code::E171,
+                    sp,
+                    format!("unknown initial value element `{other}`"),
+                );
                 self.gen("0", v);
             }
         }
@@ -358,11 +390,7 @@ impl Imp<'_> {
             } else {
                 t.span(self.file)
             };
-            self.error(
-                Code::E171,
-                sp,
-                format!("`{}` is not an expression", t.text),
-            );
+            self.error(Code::E171, sp, format!("`{}` is not an expression", t.text));
             self.gen("0", n);
             return;
         }

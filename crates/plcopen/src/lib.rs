@@ -90,7 +90,13 @@ fn generate<'s>(file: FileId, src: &'s str) -> Imp<'s> {
     imp
 }
 
-fn finish(file: FileId, out: Out, mut diags: Vec<Diagnostic>, parsed: Parsed, interner: &mut Interner) -> Parsed {
+fn finish(
+    file: FileId,
+    out: Out,
+    mut diags: Vec<Diagnostic>,
+    parsed: Parsed,
+    interner: &mut Interner,
+) -> Parsed {
     let remap = remap::Remap { out: &out };
     let mut unit = parsed.unit;
     for item in &mut unit.items {

@@ -23,7 +23,10 @@ impl Imp<'_> {
             self.error(
                 Code::E171,
                 sp,
-                format!("`{}` without the `{attr}` attribute ({what})", n.tag_name().name()),
+                format!(
+                    "`{}` without the `{attr}` attribute ({what})",
+                    n.tag_name().name()
+                ),
             );
             return None;
         };

@@ -62,7 +62,10 @@ impl Imp<'_> {
                     self.error(
                         Code::E171,
                         sp,
-                        format!("POU `{}`: the interface section `{tag}` is not supported", name.text),
+                        format!(
+                            "POU `{}`: the interface section `{tag}` is not supported",
+                            name.text
+                        ),
                     );
                 }
             }
@@ -76,12 +79,15 @@ impl Imp<'_> {
                 self.error(Code::E171, sp, format!("POU `{pou_name}` has no `body`"));
             }
         }
-        if let Some(acts) = xml::child(p, "actions").filter(|a| xml::elements(*a).next().is_some()) {
+        if let Some(acts) = xml::child(p, "actions").filter(|a| xml::elements(*a).next().is_some())
+        {
             let sp = self.span(acts);
             self.error(
                 Code::E171,
                 sp,
-                format!("POU `{pou_name}`: actions (and SFC transitions) of POUs are not supported yet"),
+                format!(
+                    "POU `{pou_name}`: actions (and SFC transitions) of POUs are not supported yet"
+                ),
             );
         }
         self.gen("\nEND_", p);
@@ -91,7 +97,9 @@ impl Imp<'_> {
 
     /// A `<body>`: ST and IL copied as written, LD and FBD lowered.
     fn body(&mut self, body: Node, ctx: &mut crate::graph::lower::PouCtx) {
-        let Some(lang) = xml::elements(body).find(|e| e.tag_name().name() != "documentation" && e.tag_name().name() != "addData") else {
+        let Some(lang) = xml::elements(body)
+            .find(|e| e.tag_name().name() != "documentation" && e.tag_name().name() != "addData")
+        else {
             return;
         };
         match lang.tag_name().name() {
@@ -110,7 +118,10 @@ impl Imp<'_> {
                 self.error(
                     Code::E171,
                     sp,
-                    format!("POU `{}`: `{other}` bodies are not supported yet", ctx.pou()),
+                    format!(
+                        "POU `{}`: `{other}` bodies are not supported yet",
+                        ctx.pou()
+                    ),
                 );
             }
         }

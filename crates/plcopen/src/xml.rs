@@ -20,7 +20,11 @@ impl Text {
         let end = self.text.trim_end().len().max(start);
         Text {
             text: self.text.get(start..end).unwrap_or("").to_string(),
-            raw: self.raw.get(start..=end).map(<[u32]>::to_vec).unwrap_or_default(),
+            raw: self
+                .raw
+                .get(start..=end)
+                .map(<[u32]>::to_vec)
+                .unwrap_or_default(),
         }
     }
 

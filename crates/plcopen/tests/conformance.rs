@@ -20,7 +20,10 @@ fn cases() -> Vec<(String, String)> {
     files
         .iter()
         .map(|p| {
-            let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            let name = p
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
             let text = std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{name}: {e}"));
             (name, text)
         })
@@ -37,7 +40,13 @@ fn run(backend: Backend) {
             Verdict::Failed(m) | Verdict::Pending(m) | Verdict::KnownBug(m) => failed.push(m),
         }
     }
-    assert!(failed.is_empty(), "{} of {} failed:\n{}", failed.len(), cases.len(), failed.join("\n"));
+    assert!(
+        failed.is_empty(),
+        "{} of {} failed:\n{}",
+        failed.len(),
+        cases.len(),
+        failed.join("\n")
+    );
 }
 
 #[test]

@@ -124,7 +124,10 @@ impl<'n> L<'n> {
                 Code::E172,
                 c.span,
                 reader,
-                format!("a connection names localId {}, which is not in this body", c.from),
+                format!(
+                    "a connection names localId {}, which is not in this body",
+                    c.from
+                ),
             );
             return None;
         };
@@ -139,7 +142,12 @@ impl<'n> L<'n> {
         match self.connectors.get(name) {
             Some(&c) => Some(c),
             None => {
-                self.err(Code::E172, e.span, e, format!("continuation `{name}` has no connector"));
+                self.err(
+                    Code::E172,
+                    e.span,
+                    e,
+                    format!("continuation `{name}` has no connector"),
+                );
                 None
             }
         }
@@ -191,16 +199,22 @@ impl<'n> L<'n> {
                 out.push(Piece::Copy(expr.clone()));
                 out.push(Piece::Gen(")".into(), sp));
             }
-            Kind::Block { type_name, instance } => {
+            Kind::Block {
+                type_name,
+                instance,
+            } => {
                 let formal = c
                     .formal
                     .clone()
                     .or_else(|| e.outputs.first().and_then(|o| o.formal.clone()))
                     .unwrap_or_default();
-                let negated = e
-                    .outputs
-                    .iter()
-                    .any(|o| o.negated && o.formal.as_deref().unwrap_or("").eq_ignore_ascii_case(&formal));
+                let negated = e.outputs.iter().any(|o| {
+                    o.negated
+                        && o.formal
+                            .as_deref()
+                            .unwrap_or("")
+                            .eq_ignore_ascii_case(&formal)
+                });
                 if negated {
                     out.push(Piece::Gen("NOT ".into(), sp));
                 }
@@ -239,7 +253,12 @@ impl<'n> L<'n> {
                 match e.inputs.first() {
                     Some(p) if !p.conns.is_empty() => self.pin(out, e, p),
                     _ => {
-                        self.err(Code::E173, e.span, e, "the connector's input is not connected");
+                        self.err(
+                            Code::E173,
+                            e.span,
+                            e,
+                            "the connector's input is not connected",
+                        );
                         out.push(Piece::Gen("FALSE".into(), sp));
                     }
                 }
@@ -285,18 +304,31 @@ impl<'n> L<'n> {
             _ => ins.len() >= 2,
         };
         if !arity_ok {
-            self.err(Code::E171, e.span, e, format!("`{op}` with {} inputs", ins.len()));
+            self.err(
+                Code::E171,
+                e.span,
+                e,
+                format!("`{op}` with {} inputs", ins.len()),
+            );
             out.push(Piece::Gen("FALSE".into(), e.span));
             return true;
         }
-        out.push(Piece::Gen(if op == "NOT" { "(NOT " } else { "(" }.into(), e.span));
+        out.push(Piece::Gen(
+            if op == "NOT" { "(NOT " } else { "(" }.into(),
+            e.span,
+        ));
         for (k, p) in ins.iter().enumerate() {
             if k > 0 {
                 out.push(Piece::Gen(format!(" {op} "), p.span));
             }
             if p.conns.is_empty() {
                 let formal = p.formal.clone().unwrap_or_default();
-                self.err(Code::E173, p.span, e, format!("input `{formal}` of `{op}` is not connected"));
+                self.err(
+                    Code::E173,
+                    p.span,
+                    e,
+                    format!("input `{formal}` of `{op}` is not connected"),
+                );
                 out.push(Piece::Gen("FALSE".into(), p.span));
             } else {
                 out.push(Piece::Gen("(".into(), p.span));
@@ -318,7 +350,11 @@ impl<'n> L<'n> {
                 .copied()
                 .map(|i| self.el(i))
                 .and_then(|s| match &s.kind {
-                    Kind::InVar { negated: false, expr } | Kind::InOutVar { expr } => Some(expr.clone()),
+                    Kind::InVar {
+                        negated: false,
+                        expr,
+                    }
+                    | Kind::InOutVar { expr } => Some(expr.clone()),
                     _ => None,
                 }),
             _ => None,
@@ -361,7 +397,12 @@ impl<'n> L<'n> {
                 continue;
             }
             if !crate::names::is_identifier(&formal) {
-                self.err(Code::E177, p.span, e, format!("pin `{formal}` is not an identifier"));
+                self.err(
+                    Code::E177,
+                    p.span,
+                    e,
+                    format!("pin `{formal}` is not an identifier"),
+                );
                 continue;
             }
             if !first {
@@ -430,7 +471,12 @@ impl<'n> L<'n> {
         match e.inputs.first() {
             Some(p) if !p.conns.is_empty() => self.pin(out, e, p),
             _ => {
-                self.err(Code::E173, e.span, e, format!("the input of this {what} is not connected"));
+                self.err(
+                    Code::E173,
+                    e.span,
+                    e,
+                    format!("the input of this {what} is not connected"),
+                );
                 out.push(Piece::Gen("FALSE".into(), e.span));
             }
         }
@@ -440,6 +486,30 @@ impl<'n> L<'n> {
         let e = self.el(i);
         let sp = e.span;
         let g = |out: &mut Vec<Piece>, s: String| out.push(Piece::Gen(s, sp));
+        // An element missing its input is reported and left out, so the
+        // checker does not add errors about a value that is not there.
+        let unwired = e.inputs.first().is_none_or(|p| p.conns.is_empty());
+        match &e.kind {
+            Kind::Contact { .. } | Kind::Coil { .. } if unwired => {
+                self.err(Code::E175, e.span, e, "nothing is connected on the left");
+                return;
+            }
+            Kind::OutVar { .. } | Kind::Jump { .. } | Kind::Return if unwired => {
+                let what = match e.kind {
+                    Kind::OutVar { .. } => "output variable",
+                    Kind::Jump { .. } => "jump",
+                    _ => "return",
+                };
+                self.err(
+                    Code::E173,
+                    e.span,
+                    e,
+                    format!("the input of this {what} is not connected"),
+                );
+                return;
+            }
+            _ => {}
+        }
         match &e.kind {
             Kind::Contact { negated, edge, var } => {
                 let n = format!("__ld_n{}", e.id);
@@ -456,7 +526,10 @@ impl<'n> L<'n> {
                         let rising = *edge == EdgeKind::Rising;
                         g(out, if rising { " AND (" } else { " AND NOT (" }.into());
                         out.push(Piece::Copy(var.clone()));
-                        g(out, format!(") AND {}{m};\n{m} := ", if rising { "NOT " } else { "" }));
+                        g(
+                            out,
+                            format!(") AND {}{m};\n{m} := ", if rising { "NOT " } else { "" }),
+                        );
                         out.push(Piece::Copy(var.clone()));
                         g(out, ";\n".into());
                         self.hidden.push(m);
@@ -481,12 +554,22 @@ impl<'n> L<'n> {
                         out.push(Piece::Copy(var.clone()));
                         g(
                             out,
-                            format!(" := {}; END_IF;\n", if *storage == Storage::Set { "TRUE" } else { "FALSE" }),
+                            format!(
+                                " := {}; END_IF;\n",
+                                if *storage == Storage::Set {
+                                    "TRUE"
+                                } else {
+                                    "FALSE"
+                                }
+                            ),
                         );
                     }
                     (Storage::None, EdgeKind::None) => {
                         out.push(Piece::Copy(var.clone()));
-                        g(out, format!(" := {}{n};\n", if *negated { "NOT " } else { "" }));
+                        g(
+                            out,
+                            format!(" := {}{n};\n", if *negated { "NOT " } else { "" }),
+                        );
                     }
                     (Storage::None, edge) => {
                         out.push(Piece::Copy(var.clone()));
@@ -513,7 +596,10 @@ impl<'n> L<'n> {
                 self.input(out, e, "in-out variable");
                 g(out, ");\n".into());
             }
-            Kind::Block { type_name, instance } => {
+            Kind::Block {
+                type_name,
+                instance,
+            } => {
                 if let Some((_, vendor)) = VENDOR_BLOCKS
                     .iter()
                     .find(|(b, _)| b.eq_ignore_ascii_case(&type_name.text))
@@ -526,7 +612,10 @@ impl<'n> L<'n> {
                     return;
                 }
                 if instance.is_none()
-                    && matches!(type_name.text.to_ascii_uppercase().as_str(), "AND" | "OR" | "XOR" | "NOT" | "MOD")
+                    && matches!(
+                        type_name.text.to_ascii_uppercase().as_str(),
+                        "AND" | "OR" | "XOR" | "NOT" | "MOD"
+                    )
                 {
                     // An operator whose result nothing reads does nothing.
                     return;
@@ -581,7 +670,11 @@ impl<'n> L<'n> {
                 if is_statement(s) {
                     acc.push(j);
                 } else if is_function(s) || matches!(s.kind, Kind::Connector { .. }) {
-                    if is_function(s) && c.formal.as_deref().is_some_and(|f| f.eq_ignore_ascii_case("ENO")) {
+                    if is_function(s)
+                        && c.formal
+                            .as_deref()
+                            .is_some_and(|f| f.eq_ignore_ascii_case("ENO"))
+                    {
                         // The function's ENO is set where its result is used.
                         if self.readers[j].is_empty() {
                             acc.push(j);
@@ -621,7 +714,10 @@ pub(crate) fn lower(imp: &mut Imp, net: &Network, ctx: &mut PouCtx) {
         for p in &e.inputs {
             for c in &p.conns {
                 if let Some(&j) = l.by_id.get(&c.from) {
-                    if c.formal.as_deref().is_some_and(|f| f.eq_ignore_ascii_case("ENO")) {
+                    if c.formal
+                        .as_deref()
+                        .is_some_and(|f| f.eq_ignore_ascii_case("ENO"))
+                    {
                         l.eno_read[j] = true;
                     } else {
                         l.readers[j].push(i);

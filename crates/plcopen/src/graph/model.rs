@@ -39,23 +39,51 @@ pub enum Kind {
     LeftRail,
     RightRail,
     /// `--| |--`, `--|/|--`, `--|P|--`, `--|N|--` on `var`.
-    Contact { negated: bool, edge: EdgeKind, var: Text },
+    Contact {
+        negated: bool,
+        edge: EdgeKind,
+        var: Text,
+    },
     /// `--( )--` and its negated, set, reset, rising and falling forms.
-    Coil { negated: bool, storage: Storage, edge: EdgeKind, var: Text },
+    Coil {
+        negated: bool,
+        storage: Storage,
+        edge: EdgeKind,
+        var: Text,
+    },
     /// A function (no instance) or function block instance.
-    Block { type_name: Text, instance: Option<Text> },
+    Block {
+        type_name: Text,
+        instance: Option<Text>,
+    },
     /// Reads an expression.
-    InVar { negated: bool, expr: Text },
+    InVar {
+        negated: bool,
+        expr: Text,
+    },
     /// Writes its input to a variable.
-    OutVar { negated: bool, expr: Text },
+    OutVar {
+        negated: bool,
+        expr: Text,
+    },
     /// Reads a variable and, when its input is connected, writes it.
-    InOutVar { expr: Text },
-    Label { name: Text },
-    Jump { label: Text },
+    InOutVar {
+        expr: Text,
+    },
+    Label {
+        name: Text,
+    },
+    Jump {
+        label: Text,
+    },
     Return,
     /// The named end of a wire continued elsewhere by a continuation.
-    Connector { name: String },
-    Continuation { name: String },
+    Connector {
+        name: String,
+    },
+    Continuation {
+        name: String,
+    },
 }
 
 /// One element: its `localId`, kind, position and pins.

@@ -53,7 +53,10 @@ fn element(imp: &mut Imp, e: Node, pou: &str) -> Option<Element> {
                 imp.error(
                     Code::E171,
                     sp,
-                    format!("POU `{pou}`, localId {id}: `{}` is not an expression", t.text),
+                    format!(
+                        "POU `{pou}`, localId {id}: `{}` is not an expression",
+                        t.text
+                    ),
                 );
                 None
             }
@@ -121,13 +124,19 @@ fn element(imp: &mut Imp, e: Node, pou: &str) -> Option<Element> {
             imp.error(
                 Code::E171,
                 span,
-                format!("POU `{pou}`, localId {id}: `{tag}` is not an LD or FBD element automat reads"),
+                format!(
+                    "POU `{pou}`, localId {id}: `{tag}` is not an LD or FBD element automat reads"
+                ),
             );
             return None;
         }
     };
     let (x, y) = xml::child(e, "position").map_or((0.0, 0.0), |p| {
-        let f = |a| xml::attr_str(p, a).and_then(|v| v.trim().parse::<f64>().ok()).unwrap_or(0.0);
+        let f = |a| {
+            xml::attr_str(p, a)
+                .and_then(|v| v.trim().parse::<f64>().ok())
+                .unwrap_or(0.0)
+        };
         (f("x"), f("y"))
     });
     let order = xml::attr_str(e, "executionOrderId")
@@ -199,7 +208,11 @@ fn pin_in(imp: &mut Imp, n: Node, var: Option<Node>, in_out: bool) -> PinIn {
                         .filter(|s| !s.is_empty()),
                     span,
                 }),
-                None => imp.error(Code::E171, span, "a `connection` without a numeric `refLocalId`"),
+                None => imp.error(
+                    Code::E171,
+                    span,
+                    "a `connection` without a numeric `refLocalId`",
+                ),
             }
         }
     }
