@@ -28,6 +28,7 @@ mod names;
 pub(crate) mod out;
 mod pou;
 mod remap;
+mod sfc;
 pub mod xml;
 
 use automat_base::{Code, Diagnostic, FileId, Interner, Span};

@@ -72,22 +72,31 @@ impl Imp<'_> {
         }
         let pou_name = name.text.clone();
         let mut ctx = crate::graph::lower::PouCtx::new(&pou_name, kw == "FUNCTION");
+        let sfc = xml::child(p, "body")
+            .and_then(|b| xml::child(b, "SFC"))
+            .is_some();
         match xml::child(p, "body") {
+            Some(body) if sfc => {
+                if let Some(chart) = xml::child(body, "SFC") {
+                    self.sfc(chart, p, &pou_name);
+                }
+            }
             Some(body) => self.body(body, &mut ctx),
             None => {
                 let sp = self.span(p);
                 self.error(Code::E171, sp, format!("POU `{pou_name}` has no `body`"));
             }
         }
-        if let Some(acts) = xml::child(p, "actions").filter(|a| xml::elements(*a).next().is_some())
-        {
+        let extra = ["actions", "transitions"]
+            .iter()
+            .filter_map(|t| xml::child(p, t))
+            .find(|a| xml::elements(*a).next().is_some());
+        if let Some(acts) = extra.filter(|_| !sfc) {
             let sp = self.span(acts);
             self.error(
                 Code::E171,
                 sp,
-                format!(
-                    "POU `{pou_name}`: actions (and SFC transitions) of POUs are not supported yet"
-                ),
+                format!("POU `{pou_name}`: actions and transitions are only read for an SFC body"),
             );
         }
         self.gen("\nEND_", p);

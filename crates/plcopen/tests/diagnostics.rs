@@ -187,9 +187,16 @@ fn st_body_errors_keep_their_position() {
 #[test]
 fn every_importer_code_is_covered() {
     let me = include_str!("diagnostics.rs");
-    for c in automat_base::Code::ALL.iter().filter(|c| c.as_str().starts_with("E17")) {
+    for c in automat_base::Code::ALL
+        .iter()
+        .filter(|c| c.as_str().starts_with("E17"))
+    {
         let needle = format!("error[{}]", c.as_str());
         // Split so this test's own text does not count.
-        assert!(me.matches(&needle).count() >= 1, "no case for {}", c.as_str());
+        assert!(
+            me.matches(&needle).count() >= 1,
+            "no case for {}",
+            c.as_str()
+        );
     }
 }
