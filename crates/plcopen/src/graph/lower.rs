@@ -646,9 +646,25 @@ impl<'n> L<'n> {
         }
     }
 
+    /// The statements that evaluate function `j` (they inline its call).
+    fn hosts(&self, j: usize, acc: &mut Vec<usize>, seen: &mut Vec<usize>) {
+        for &r in self.readers.get(j).into_iter().flatten() {
+            if seen.contains(&r) {
+                continue;
+            }
+            seen.push(r);
+            let e = self.el(r);
+            if is_statement(e) {
+                acc.push(r);
+            } else if is_function(e) {
+                self.hosts(r, acc, seen);
+            }
+        }
+    }
+
     /// The statement elements `i` reads from (through functions and
     /// connectors), for the data-flow order.
-    fn deps(&self, i: usize, acc: &mut Vec<usize>, seen: &mut Vec<usize>) {
+    fn deps(&self, root: usize, i: usize, acc: &mut Vec<usize>, seen: &mut Vec<usize>) {
         let e = self.el(i);
         for p in &e.inputs {
             for c in &p.conns {
@@ -679,9 +695,22 @@ impl<'n> L<'n> {
                         if self.readers[j].is_empty() {
                             acc.push(j);
                         }
-                        acc.extend(self.readers[j].iter().copied().filter(|&r| r != i));
+                        // Of several, the first by position (the others
+                        // set the same ENO again).
+                        let mut hs = Vec::new();
+                        self.hosts(j, &mut hs, &mut vec![j]);
+                        hs.retain(|&r| r != root);
+                        let net = self.net;
+                        let at =
+                            |r: usize| (net.elements[r].y, net.elements[r].x, net.elements[r].id);
+                        let first = hs.into_iter().min_by(|a, b| {
+                            at(*a)
+                                .partial_cmp(&at(*b))
+                                .unwrap_or(std::cmp::Ordering::Equal)
+                        });
+                        acc.extend(first);
                     }
-                    self.deps(j, acc, seen);
+                    self.deps(root, j, acc, seen);
                 }
             }
         }
@@ -780,7 +809,7 @@ fn order(l: &mut L, own: &[bool]) -> Vec<usize> {
     for &i in &stmts {
         let mut acc = Vec::new();
         let mut seen = Vec::new();
-        l.deps(i, &mut acc, &mut seen);
+        l.deps(i, i, &mut acc, &mut seen);
         acc.retain(|&j| j != i || matches!(net.elements[i].kind, Kind::Block { .. }));
         deps[i] = acc;
     }
