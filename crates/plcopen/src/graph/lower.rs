@@ -791,6 +791,10 @@ pub(crate) fn lower(imp: &mut Imp, net: &Network, ctx: &mut PouCtx) {
     }
 }
 
+/// Where a statement sorts: its rung's top (y, x), the rung, its own
+/// (y, x) and `localId`.
+type OrderKey = (f64, f64, usize, f64, f64, u32);
+
 /// Execution order of the statement elements (see the module comment).
 fn order(l: &mut L, own: &[bool]) -> Vec<usize> {
     let net = l.net;
@@ -875,7 +879,7 @@ fn order(l: &mut L, own: &[bool]) -> Vec<usize> {
     // Kahn's algorithm, always taking the first ready element by key.
     let mut done = vec![false; n];
     let mut out = Vec::with_capacity(stmts.len());
-    let mut keys: Vec<(usize, (f64, f64, usize, f64, f64, u32))> =
+    let mut keys: Vec<(usize, OrderKey)> =
         stmts.iter().map(|&i| (i, key(i, &mut group))).collect();
     keys.sort_by(|a, b| a.1.partial_cmp(&b.1).unwrap_or(std::cmp::Ordering::Equal));
     while out.len() < stmts.len() {
