@@ -250,6 +250,8 @@ codes! {
         "A block names a function block of one vendor's tool (Beremiz `python_eval`, `python_poll`, `python_gear`, SVGHMI blocks, ...), not an IEC 61131-3 or user block; automat does not have it.";
     E177 => "invalid name in PLCopen XML",
         "A `name`, `typeName`, `instanceName`, `label` or a variable of a contact or coil is not an IEC 61131-3 identifier (letters, digits and underscores, not starting with a digit).";
+    E178 => "not expressible in PLCopen XML",
+        "`automat export` met a construct TC6 XML has no place for: a VAR_GLOBAL outside a CONFIGURATION, VAR_ACCESS or VAR_CONFIG, connections of a program instance, an `ARRAY [*]`, an R_EDGE/F_EDGE input, a vendor dialect. Move it into a form the format has (globals into a configuration) or leave the project in ST.";
 
     // ---- projects, plants and scenarios (automat-project, automat-scenario) ----
     E300 => "invalid project file",

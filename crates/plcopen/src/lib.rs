@@ -23,6 +23,7 @@
 
 mod config;
 mod decl;
+mod export;
 pub mod graph;
 mod names;
 pub(crate) mod out;
@@ -34,6 +35,7 @@ pub mod xml;
 use automat_base::{Code, Diagnostic, FileId, Interner, Span};
 use automat_syntax::ast::{Body, Expr, ExprKind, Item, SourceUnit, Stmt, StmtKind};
 use automat_syntax::Parsed;
+pub use export::export;
 use out::Out;
 use roxmltree::{Document, Node, ParsingOptions};
 

@@ -879,8 +879,7 @@ fn order(l: &mut L, own: &[bool]) -> Vec<usize> {
     // Kahn's algorithm, always taking the first ready element by key.
     let mut done = vec![false; n];
     let mut out = Vec::with_capacity(stmts.len());
-    let mut keys: Vec<(usize, OrderKey)> =
-        stmts.iter().map(|&i| (i, key(i, &mut group))).collect();
+    let mut keys: Vec<(usize, OrderKey)> = stmts.iter().map(|&i| (i, key(i, &mut group))).collect();
     keys.sort_by(|a, b| a.1.partial_cmp(&b.1).unwrap_or(std::cmp::Ordering::Equal));
     while out.len() < stmts.len() {
         let ready = keys
