@@ -6,6 +6,7 @@
 
 mod cmd_check;
 mod cmd_explain;
+mod cmd_export;
 mod cmd_run;
 mod cmd_test;
 mod engines;
@@ -32,6 +33,7 @@ struct Cli {
 enum Command {
     Check(cmd_check::CheckArgs),
     Explain(cmd_explain::ExplainArgs),
+    Export(cmd_export::ExportArgs),
     Run(cmd_run::RunArgs),
     Test(cmd_test::TestArgs),
     Plot(plot::PlotArgs),
@@ -58,6 +60,7 @@ fn main() -> ExitCode {
     let outcome = match cli.command {
         Command::Check(args) => cmd_check::run(&args),
         Command::Explain(args) => cmd_explain::run(&args),
+        Command::Export(args) => cmd_export::run(&args),
         Command::Run(args) => cmd_run::run_cmd(&args),
         Command::Test(args) => cmd_test::run(&args),
         Command::Plot(args) => plot::run(&args),

@@ -200,3 +200,20 @@ fn every_importer_code_is_covered() {
         );
     }
 }
+
+#[test]
+fn export_refuses_what_tc6_cannot_hold() {
+    let mut map = SourceMap::new();
+    map.add("g.st", "VAR_GLOBAL x : INT; END_VAR\nPROGRAM P VAR_EXTERNAL x : INT; END_VAR x := 1; END_PROGRAM\n");
+    let mut interner = Interner::new();
+    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &[]);
+    assert!(!analysis.has_errors());
+    let Err(d) = automat_plcopen::export(&units, &map, "g") else {
+        panic!("exported a global outside a configuration");
+    };
+    let report = render::render_report(&map, &d);
+    assert!(
+        report.contains("g.st:1:1: error[E178]: a VAR_GLOBAL outside a CONFIGURATION"),
+        "{report}"
+    );
+}
