@@ -93,7 +93,7 @@ fn xml_errors_point_at_the_element() {
     assert_eq!(out.status.code(), Some(1), "{text}");
     assert!(
         text.contains(
-            "latch.xml:13:84: error[E172]: POU `Latch`, localId 5: a connection names localId 40"
+            "latch.xml:13:64: error[E172]: POU `Latch`, localId 5: a connection names localId 40"
         ),
         "{text}"
     );
