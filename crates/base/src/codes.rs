@@ -233,6 +233,26 @@ codes! {
     E159 => "PL7 step number used twice",
         "PL7 dialect: step objects `%Xi` are global, so a step number names one step of one chart.";
 
+    // ---- PLCopen TC6 XML (automat-plcopen) ----
+    E170 => "malformed PLCopen XML",
+        "A `.xml` source is not well-formed XML, or its root element is not a PLCopen TC6 `project` (schema 2.01 or 2.0). The message gives the XML parser's reason; the location is where it stopped.";
+    E171 => "unsupported PLCopen element",
+        "An element of the PLCopen file is not one the importer reads (the supported subset is in `docs/plcopen.md`), or lacks an attribute it needs (a `pou` without `name` or `pouType`, a `variable` without `type`). `addData` is always ignored.";
+    E172 => "reference to a missing localId",
+        "A `connection refLocalId` of an LD or FBD body names no element of that body, a `continuation` names no `connector`, or two elements share one `localId`.";
+    E173 => "unconnected input",
+        "An input of an LD or FBD element (a block input, an output variable, a jump, a return, a connector) has no connection, so it has no value. Connect it or remove the element.";
+    E174 => "cycle without a feedback variable",
+        "The connections of an LD or FBD body form a loop. A value can only flow back through an explicit variable: write it with an output variable and read it with an input variable (the read then sees the previous write).";
+    E175 => "coil or contact without a left connection",
+        "An LD contact or coil has nothing on its left: no connection to the left power rail or to another element, so it carries no power flow.";
+    E176 => "vendor function block",
+        "A block names a function block of one vendor's tool (Beremiz `python_eval`, `python_poll`, `python_gear`, SVGHMI blocks, ...), not an IEC 61131-3 or user block; automat does not have it.";
+    E177 => "invalid name in PLCopen XML",
+        "A `name`, `typeName`, `instanceName`, `label` or a variable of a contact or coil is not an IEC 61131-3 identifier (letters, digits and underscores, not starting with a digit).";
+    E178 => "not expressible in PLCopen XML",
+        "`automat export` met a construct TC6 XML has no place for: a VAR_GLOBAL outside a CONFIGURATION, VAR_ACCESS or VAR_CONFIG, connections of a program instance, an `ARRAY [*]`, an R_EDGE/F_EDGE input, a vendor dialect. Move it into a form the format has (globals into a configuration) or leave the project in ST.";
+
     // ---- projects, plants and scenarios (automat-project, automat-scenario) ----
     E300 => "invalid project file",
         "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]`, `[bind]` and `[tasks.NAME]` (watchdog, sensitivity; NAME a task of the program, see docs/watchdog.md).";

@@ -63,7 +63,7 @@ fn collect(paths: &[PathBuf]) -> Result<Vec<Item>, String> {
                 true
             }
         }
-        Entry::File(f) => matches!(extension(f).as_deref(), Some("scn" | "st")),
+        Entry::File(f) => matches!(extension(f).as_deref(), Some("scn" | "st" | "xml")),
     };
     let mut files = Vec::new();
     for p in paths {
@@ -81,7 +81,7 @@ fn collect(paths: &[PathBuf]) -> Result<Vec<Item>, String> {
     for p in files {
         match extension(&p).as_deref() {
             Some("scn") => out.push(Item::Scenario(p)),
-            Some("st") => {
+            Some("st" | "xml") => {
                 let text = std::fs::read(&p).map_err(|e| format!("{}: {e}", p.display()))?;
                 if conformance::is_conformance(&String::from_utf8_lossy(&text)) {
                     out.push(Item::Conformance(p));

@@ -4,8 +4,9 @@ use automat_base::SourceMap;
 use automat_project::folder::{Entry, Walk};
 use std::path::{Path, PathBuf};
 
-/// File extensions read as Structured Text when a directory is given.
-const SOURCE_EXTENSIONS: &[&str] = &["st", "iecst"];
+/// File extensions read when a directory is given: Structured Text (and IL,
+/// SFC in it), and PLCopen TC6 XML.
+const SOURCE_EXTENSIONS: &[&str] = &["st", "iecst", "xml"];
 
 /// Expands files and directories (recursively, sorted by path so every run
 /// sees the same order) into the list of source files, each file once: a
@@ -26,7 +27,7 @@ pub fn collect(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
             walk.dir(p, &mut keep, &mut out)?;
             if out.len() == before && walk.skipped().len() == skipped {
                 return Err(format!(
-                    "{}: no Structured Text files (*.st) in this directory",
+                    "{}: no source files (*.st, *.xml) in this directory",
                     p.display()
                 ));
             }

@@ -26,6 +26,7 @@ macro_rules! eprintln {
 
 mod cmd_check;
 mod cmd_explain;
+mod cmd_export;
 mod cmd_online;
 mod cmd_passwd;
 mod cmd_run;
@@ -56,6 +57,7 @@ struct Cli {
 enum Command {
     Check(cmd_check::CheckArgs),
     Explain(cmd_explain::ExplainArgs),
+    Export(cmd_export::ExportArgs),
     // Boxed: by far the largest set of flags.
     Run(Box<cmd_run::RunArgs>),
     Test(cmd_test::TestArgs),
@@ -84,6 +86,7 @@ fn main() -> ExitCode {
     let outcome = match cli.command {
         Command::Check(args) => cmd_check::run(&args),
         Command::Explain(args) => cmd_explain::run(&args),
+        Command::Export(args) => cmd_export::run(&args),
         Command::Run(args) => cmd_run::run_cmd(&args),
         Command::Test(args) => cmd_test::run(&args),
         Command::Plot(args) => plot::run(&args),

@@ -26,7 +26,7 @@ fn corpus_on(backend: Backend) {
     let mut files: Vec<PathBuf> = std::fs::read_dir(corpus())
         .unwrap_or_else(|e| panic!("{}: {e}", corpus().display()))
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "st"))
+        .filter(|p| p.extension().is_some_and(|x| x == "st" || x == "xml"))
         .collect();
     files.sort();
     assert!(!files.is_empty(), "no cases in {}", corpus().display());

@@ -505,7 +505,8 @@ fn task_spec(
 fn is_st(p: &Path) -> bool {
     p.extension()
         .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("st"))
+        // PLCopen TC6 XML sources sit beside the ST ones.
+        .is_some_and(|e| e.eq_ignore_ascii_case("st") || e.eq_ignore_ascii_case("xml"))
 }
 
 /// Every `*.st` under `dir` (recursively when `deep`), sorted, each file

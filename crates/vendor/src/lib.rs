@@ -125,14 +125,19 @@ pub fn add_libraries(map: &mut SourceMap, dialects: &[Dialect]) {
 
 /// Parses every file of `sources`, applies the rewrites of `dialects`, and
 /// checks the project; parse, rewrite and check diagnostics, sorted by file
-/// and position. With no dialect this is exactly
+/// and position. `*.xml` files are PLCopen TC6 XML, read by
+/// `automat_plcopen::import` (the dialect rewrites see its trees like any
+/// other). With no dialect and no XML file this is exactly
 /// [`automat_sema::check_sources`].
 pub fn check_sources(
     sources: &SourceMap,
     interner: &mut Interner,
     dialects: &[Dialect],
 ) -> (Vec<SourceUnit>, Analysis) {
-    if dialects.is_empty() {
+    let xml = sources
+        .files()
+        .any(|(_, f)| automat_plcopen::is_plcopen_file(&f.name));
+    if dialects.is_empty() && !xml {
         return automat_sema::check_sources(sources, interner);
     }
     let mut units = Vec::with_capacity(sources.len());
@@ -164,12 +169,25 @@ pub fn check_sources(
             None
         };
         let text = isa_text.as_deref().unwrap_or(text);
-        let parsed = automat_syntax::parse(id, text, interner);
+        // PLCopen XML files are read by their importer into the same trees.
+        let parsed = if automat_plcopen::is_plcopen_file(&file.name) {
+            automat_plcopen::import(id, &file.text, interner)
+        } else {
+            automat_syntax::parse(id, text, interner)
+        };
         if lib {
             libs.push(id);
         }
         units.push(parsed.unit);
         diags.extend(parsed.diagnostics);
+    }
+    if dialects.is_empty() {
+        // XML files without a dialect: no rewrite applies.
+        let mut analysis = automat_sema::check(&units, interner);
+        diags.append(&mut analysis.diagnostics);
+        diags.sort_by_key(|d: &Diagnostic| (d.span.file, d.span.start, d.span.end));
+        analysis.diagnostics = diags;
+        return (units, analysis);
     }
     drop_shadowed_library_pous(&mut units, &libs);
     let is_user = |u: &SourceUnit| !libs.contains(&u.file);

@@ -91,6 +91,8 @@ fn parse_expect(text: &str, at: Option<u64>, line: usize) -> Result<Expect, Stri
 /// The text of the header: the first comment, which must open the file.
 pub(crate) fn header(source: &str) -> Result<(&str, usize), String> {
     let start = source.trim_start();
+    // A PLCopen XML case carries the header in its first XML comment.
+    let start = start.strip_prefix("<!--").map_or(start, str::trim_start);
     let skipped = source.len() - start.len();
     let body = start
         .strip_prefix("(*")

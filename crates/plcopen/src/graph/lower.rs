@@ -1,0 +1,942 @@
+//! A network as Structured Text statements, in execution order.
+//!
+//! Each element becomes the ST it means (IEC 61131-3 §8.2, §8.3):
+//! - The left rail is `TRUE`. Several wires into one input are a wired OR.
+//! - A contact computes its power flow into a hidden BOOL `__ld_n<id>`:
+//!   `in AND v`, `in AND NOT v` (negated), `in AND (v AND NOT m)` with
+//!   `m := v` after (rising edge; `NOT v AND m` falling), `m` a hidden BOOL
+//!   memory updated on every evaluation.
+//! - A coil passes its input on (`__ld_n<id> := in`) and writes `v := in`,
+//!   `v := NOT in` (negated), `IF in THEN v := TRUE` (set) or `:= FALSE`
+//!   (reset), `v := in AND NOT m; m := in` (rising; falling likewise).
+//! - A block with an instance is a call statement `inst(EN := …, IN := …)`
+//!   whose outputs are read as `inst.Q` / `inst.ENO`; a block without one is
+//!   a function whose call is written where its result is used (a function
+//!   whose result is not used is a call statement), `ENO => __ld_eno<id>`.
+//!   Unconnected inputs of a function block keep their value; of a function
+//!   they are E173. A negated pin is `NOT`; an edge on an input pin feeds
+//!   the block a pulse computed as for contacts.
+//! - Output variables assign, in-out variables assign when their input is
+//!   connected, input variables and in-out variables read their expression.
+//! - A jump is `IF in THEN GOTO label`, a return `IF in THEN RETURN`, a label
+//!   marks its place; connectors and continuations are one wire.
+//!
+//! Order: when any element of an FBD body has a non-zero
+//! `executionOrderId`, the statements follow it (elements without one come
+//! after, by position). Otherwise the order is data flow: an element runs
+//! after every element it reads from, rungs (connected groups of elements,
+//! the rails not counted) one after the other from the top, and ties are
+//! broken by position, top to bottom then left to right. A loop of wires is
+//! E174: feedback goes through a variable (the reader sees the value of the
+//! previous write).
+
+use super::model::*;
+use crate::xml::Text;
+use crate::Imp;
+use automat_base::{Code, Span};
+use std::collections::HashMap;
+
+/// Marker assignments the importer turns into jumps and labels.
+pub const GOTO_MARK: &str = "__PLCOPEN_GOTO";
+pub const LABEL_MARK: &str = "__PLCOPEN_LABEL";
+
+/// Blocks of one vendor's tool that are not IEC 61131-3 blocks.
+const VENDOR_BLOCKS: &[(&str, &str)] = &[
+    ("python_eval", "Beremiz"),
+    ("python_poll", "Beremiz"),
+    ("python_gear", "Beremiz"),
+];
+
+/// Where a body is being lowered: its POU (for messages).
+pub struct PouCtx {
+    name: String,
+}
+
+impl PouCtx {
+    pub fn new(name: &str, _function: bool) -> PouCtx {
+        PouCtx {
+            name: name.to_string(),
+        }
+    }
+
+    pub fn pou(&self) -> &str {
+        &self.name
+    }
+}
+
+enum Piece {
+    Gen(String, Span),
+    Copy(Text),
+}
+
+struct L<'n> {
+    net: &'n Network,
+    pou: String,
+    by_id: HashMap<u32, usize>,
+    connectors: HashMap<String, usize>,
+    /// Function blocks whose ENO some element reads.
+    eno_read: Vec<bool>,
+    /// Elements reading each element's result (not its ENO).
+    readers: Vec<Vec<usize>>,
+    hidden: Vec<String>,
+    diags: Vec<(Code, Span, String)>,
+    /// Inline expansions in progress (a loop among them is E174).
+    expanding: Vec<usize>,
+}
+
+fn is_function(e: &Element) -> bool {
+    matches!(&e.kind, Kind::Block { instance: None, .. })
+}
+
+/// Elements that are statements of their own.
+fn is_statement(e: &Element) -> bool {
+    match &e.kind {
+        Kind::Contact { .. }
+        | Kind::Coil { .. }
+        | Kind::OutVar { .. }
+        | Kind::Label { .. }
+        | Kind::Jump { .. }
+        | Kind::Return => true,
+        Kind::InOutVar { .. } => e.inputs.iter().any(|p| !p.conns.is_empty()),
+        Kind::Block { instance, .. } => instance.is_some(),
+        _ => false,
+    }
+}
+
+impl<'n> L<'n> {
+    fn err(&mut self, code: Code, span: Span, el: &Element, msg: impl std::fmt::Display) {
+        self.diags.push((
+            code,
+            span,
+            format!("POU `{}`, localId {}: {msg}", self.pou, el.id),
+        ));
+    }
+
+    fn el(&self, i: usize) -> &'n Element {
+        let net: &'n Network = self.net;
+        &net.elements[i.min(net.elements.len().saturating_sub(1))]
+    }
+
+    /// The elements a connection reads through (continuations resolved).
+    fn target(&mut self, c: &Conn, reader: &Element) -> Option<usize> {
+        let Some(&i) = self.by_id.get(&c.from) else {
+            self.err(
+                Code::E172,
+                c.span,
+                reader,
+                format!(
+                    "a connection names localId {}, which is not in this body",
+                    c.from
+                ),
+            );
+            return None;
+        };
+        Some(i)
+    }
+
+    fn connector_of(&mut self, i: usize) -> Option<usize> {
+        let e = self.el(i);
+        let Kind::Continuation { name } = &e.kind else {
+            return Some(i);
+        };
+        match self.connectors.get(name) {
+            Some(&c) => Some(c),
+            None => {
+                self.err(
+                    Code::E172,
+                    e.span,
+                    e,
+                    format!("continuation `{name}` has no connector"),
+                );
+                None
+            }
+        }
+    }
+
+    /// The value of an input pin (its wires ORed, negated when the pin is).
+    fn pin(&mut self, out: &mut Vec<Piece>, el: &Element, pin: &PinIn) {
+        if pin.negated {
+            out.push(Piece::Gen("NOT ".into(), pin.span));
+        }
+        let many = pin.conns.len() > 1 || pin.negated;
+        if many {
+            out.push(Piece::Gen("(".into(), pin.span));
+        }
+        for (k, c) in pin.conns.iter().enumerate() {
+            if k > 0 {
+                out.push(Piece::Gen(" OR ".into(), c.span));
+            }
+            self.source(out, el, c);
+        }
+        if pin.conns.is_empty() {
+            out.push(Piece::Gen("FALSE".into(), pin.span));
+        }
+        if many {
+            out.push(Piece::Gen(")".into(), pin.span));
+        }
+    }
+
+    /// The value a wire carries.
+    fn source(&mut self, out: &mut Vec<Piece>, reader: &Element, c: &Conn) {
+        let Some(i) = self.target(c, reader).and_then(|i| self.connector_of(i)) else {
+            out.push(Piece::Gen("FALSE".into(), c.span));
+            return;
+        };
+        let e = self.el(i);
+        let sp = c.span;
+        match &e.kind {
+            Kind::LeftRail => out.push(Piece::Gen("TRUE".into(), sp)),
+            Kind::Contact { .. } | Kind::Coil { .. } => {
+                out.push(Piece::Gen(format!("__ld_n{}", e.id), sp))
+            }
+            Kind::InVar { negated, expr } => {
+                out.push(Piece::Gen(if *negated { "NOT (" } else { "(" }.into(), sp));
+                out.push(Piece::Copy(expr.clone()));
+                out.push(Piece::Gen(")".into(), sp));
+            }
+            Kind::InOutVar { expr } => {
+                out.push(Piece::Gen("(".into(), sp));
+                out.push(Piece::Copy(expr.clone()));
+                out.push(Piece::Gen(")".into(), sp));
+            }
+            Kind::Block {
+                type_name,
+                instance,
+            } => {
+                let formal = c
+                    .formal
+                    .clone()
+                    .or_else(|| e.outputs.first().and_then(|o| o.formal.clone()))
+                    .unwrap_or_default();
+                let negated = e.outputs.iter().any(|o| {
+                    o.negated
+                        && o.formal
+                            .as_deref()
+                            .unwrap_or("")
+                            .eq_ignore_ascii_case(&formal)
+                });
+                if negated {
+                    out.push(Piece::Gen("NOT ".into(), sp));
+                }
+                match instance {
+                    Some(inst) => {
+                        out.push(Piece::Copy(inst.clone()));
+                        out.push(Piece::Gen(format!(".{formal}"), sp));
+                    }
+                    None if formal.eq_ignore_ascii_case("ENO") => {
+                        out.push(Piece::Gen(format!("__ld_eno{}", e.id), sp))
+                    }
+                    None => {
+                        if self.expanding.contains(&i) {
+                            self.err(
+                                Code::E174,
+                                e.span,
+                                e,
+                                "this block's output comes back to its own input without a variable",
+                            );
+                            out.push(Piece::Gen("FALSE".into(), sp));
+                            return;
+                        }
+                        self.expanding.push(i);
+                        self.call(out, e, type_name);
+                        self.expanding.pop();
+                    }
+                }
+            }
+            Kind::Connector { .. } => {
+                if self.expanding.contains(&i) {
+                    self.err(Code::E174, e.span, e, "a connector loops back to itself");
+                    out.push(Piece::Gen("FALSE".into(), sp));
+                    return;
+                }
+                self.expanding.push(i);
+                match e.inputs.first() {
+                    Some(p) if !p.conns.is_empty() => self.pin(out, e, p),
+                    _ => {
+                        self.err(
+                            Code::E173,
+                            e.span,
+                            e,
+                            "the connector's input is not connected",
+                        );
+                        out.push(Piece::Gen("FALSE".into(), sp));
+                    }
+                }
+                self.expanding.pop();
+            }
+            _ => {
+                self.err(
+                    Code::E172,
+                    c.span,
+                    reader,
+                    format!("a connection reads localId {}, which has no output", e.id),
+                );
+                out.push(Piece::Gen("FALSE".into(), sp));
+            }
+        }
+    }
+
+    /// The standard functions spelled as ST operators (`AND` cannot be
+    /// called by name in ST): `(a AND b AND …)`, `(NOT a)`, `(a MOD b)`.
+    fn operator(&mut self, out: &mut Vec<Piece>, e: &Element, callee: &Text) -> bool {
+        let op = callee.text.to_ascii_uppercase();
+        if !matches!(op.as_str(), "AND" | "OR" | "XOR" | "NOT" | "MOD") {
+            return false;
+        }
+        let idx = self.by_id.get(&e.id).copied().unwrap_or(0);
+        let ins: Vec<&PinIn> = e
+            .inputs
+            .iter()
+            .filter(|p| !p.formal.as_deref().unwrap_or("").eq_ignore_ascii_case("EN"))
+            .collect();
+        let en = ins.len() < e.inputs.len();
+        if en || self.eno_read.get(idx).copied().unwrap_or(false) {
+            self.err(
+                Code::E171,
+                e.span,
+                e,
+                format!("EN/ENO on the `{op}` operator block are not supported"),
+            );
+        }
+        let arity_ok = match op.as_str() {
+            "NOT" => ins.len() == 1,
+            "MOD" => ins.len() == 2,
+            _ => ins.len() >= 2,
+        };
+        if !arity_ok {
+            self.err(
+                Code::E171,
+                e.span,
+                e,
+                format!("`{op}` with {} inputs", ins.len()),
+            );
+            out.push(Piece::Gen("FALSE".into(), e.span));
+            return true;
+        }
+        out.push(Piece::Gen(
+            if op == "NOT" { "(NOT " } else { "(" }.into(),
+            e.span,
+        ));
+        for (k, p) in ins.iter().enumerate() {
+            if k > 0 {
+                out.push(Piece::Gen(format!(" {op} "), p.span));
+            }
+            if p.conns.is_empty() {
+                let formal = p.formal.clone().unwrap_or_default();
+                self.err(
+                    Code::E173,
+                    p.span,
+                    e,
+                    format!("input `{formal}` of `{op}` is not connected"),
+                );
+                out.push(Piece::Gen("FALSE".into(), p.span));
+            } else {
+                out.push(Piece::Gen("(".into(), p.span));
+                self.pin(out, e, p);
+                out.push(Piece::Gen(")".into(), p.span));
+            }
+        }
+        out.push(Piece::Gen(")".into(), e.span));
+        true
+    }
+
+    /// A VAR_IN_OUT pin: the variable itself (no parentheses: it is
+    /// written), so the wire must come from a variable element.
+    fn in_out_arg(&mut self, out: &mut Vec<Piece>, e: &Element, p: &PinIn) {
+        let var = match p.conns.as_slice() {
+            [c] => self
+                .by_id
+                .get(&c.from)
+                .copied()
+                .map(|i| self.el(i))
+                .and_then(|s| match &s.kind {
+                    Kind::InVar {
+                        negated: false,
+                        expr,
+                    }
+                    | Kind::InOutVar { expr } => Some(expr.clone()),
+                    _ => None,
+                }),
+            _ => None,
+        };
+        match var {
+            Some(t) => out.push(Piece::Copy(t)),
+            None => {
+                let formal = p.formal.clone().unwrap_or_default();
+                self.err(
+                    Code::E171,
+                    p.span,
+                    e,
+                    format!("the VAR_IN_OUT pin `{formal}` must be wired to one variable"),
+                );
+                out.push(Piece::Gen("FALSE".into(), p.span));
+            }
+        }
+    }
+
+    /// `F(IN1 := …, …, ENO => __ld_eno<id>)` or `inst(EN := …, IN := …)`.
+    fn call(&mut self, out: &mut Vec<Piece>, e: &Element, callee: &Text) {
+        if is_function(e) && self.operator(out, e, callee) {
+            return;
+        }
+        let idx = self.by_id.get(&e.id).copied().unwrap_or(0);
+        out.push(Piece::Copy(callee.clone()));
+        out.push(Piece::Gen("(".into(), e.span));
+        let mut first = true;
+        for (k, p) in e.inputs.iter().enumerate() {
+            let formal = p.formal.clone().unwrap_or_default();
+            if p.conns.is_empty() {
+                if is_function(e) && !formal.eq_ignore_ascii_case("EN") {
+                    self.err(
+                        Code::E173,
+                        p.span,
+                        e,
+                        format!("input `{formal}` of `{}` is not connected", callee.text),
+                    );
+                }
+                continue;
+            }
+            if !crate::names::is_identifier(&formal) {
+                self.err(
+                    Code::E177,
+                    p.span,
+                    e,
+                    format!("pin `{formal}` is not an identifier"),
+                );
+                continue;
+            }
+            if !first {
+                out.push(Piece::Gen(", ".into(), p.span));
+            }
+            first = false;
+            out.push(Piece::Gen(format!("{formal} := "), p.span));
+            if p.in_out {
+                self.in_out_arg(out, e, p);
+            } else if p.edge != EdgeKind::None {
+                out.push(Piece::Gen(format!("__ld_e{}_{k}", e.id), p.span));
+            } else {
+                self.pin(out, e, p);
+            }
+        }
+        if is_function(e) && self.eno_read.get(idx).copied().unwrap_or(false) {
+            if !first {
+                out.push(Piece::Gen(", ".into(), e.span));
+            }
+            out.push(Piece::Gen(format!("ENO => __ld_eno{}", e.id), e.span));
+            self.hidden.push(format!("__ld_eno{}", e.id));
+        }
+        out.push(Piece::Gen(")".into(), e.span));
+    }
+
+    /// Edge-detected input pins of a block: their pulses before the call.
+    fn pin_edges(&mut self, out: &mut Vec<Piece>, e: &Element) {
+        for (k, p) in e.inputs.iter().enumerate() {
+            if p.edge == EdgeKind::None || p.conns.is_empty() {
+                continue;
+            }
+            let (v, m, pulse) = (
+                format!("__ld_v{}_{k}", e.id),
+                format!("__ld_m{}_{k}", e.id),
+                format!("__ld_e{}_{k}", e.id),
+            );
+            out.push(Piece::Gen(format!("{v} := "), p.span));
+            let plain = PinIn {
+                edge: EdgeKind::None,
+                ..p.clone()
+            };
+            self.pin(out, e, &plain);
+            let test = if p.edge == EdgeKind::Rising {
+                format!(";\n{pulse} := {v} AND NOT {m};\n{m} := {v};\n")
+            } else {
+                format!(";\n{pulse} := NOT {v} AND {m};\n{m} := {v};\n")
+            };
+            out.push(Piece::Gen(test, p.span));
+            self.hidden.extend([v, m, pulse]);
+        }
+    }
+
+    /// The left connection of a contact or coil (E175 when missing).
+    fn left(&mut self, out: &mut Vec<Piece>, e: &Element) {
+        match e.inputs.first() {
+            Some(p) if !p.conns.is_empty() => self.pin(out, e, p),
+            _ => {
+                self.err(Code::E175, e.span, e, "nothing is connected on the left");
+                out.push(Piece::Gen("FALSE".into(), e.span));
+            }
+        }
+    }
+
+    /// The connected input of an output variable, jump or return.
+    fn input(&mut self, out: &mut Vec<Piece>, e: &Element, what: &str) {
+        match e.inputs.first() {
+            Some(p) if !p.conns.is_empty() => self.pin(out, e, p),
+            _ => {
+                self.err(
+                    Code::E173,
+                    e.span,
+                    e,
+                    format!("the input of this {what} is not connected"),
+                );
+                out.push(Piece::Gen("FALSE".into(), e.span));
+            }
+        }
+    }
+
+    fn statement(&mut self, out: &mut Vec<Piece>, i: usize) {
+        let e = self.el(i);
+        let sp = e.span;
+        let g = |out: &mut Vec<Piece>, s: String| out.push(Piece::Gen(s, sp));
+        // An element missing its input is reported and left out, so the
+        // checker does not add errors about a value that is not there.
+        let unwired = e.inputs.first().is_none_or(|p| p.conns.is_empty());
+        match &e.kind {
+            Kind::Contact { .. } | Kind::Coil { .. } if unwired => {
+                self.err(Code::E175, e.span, e, "nothing is connected on the left");
+                return;
+            }
+            Kind::OutVar { .. } | Kind::Jump { .. } | Kind::Return if unwired => {
+                let what = match e.kind {
+                    Kind::OutVar { .. } => "output variable",
+                    Kind::Jump { .. } => "jump",
+                    _ => "return",
+                };
+                self.err(
+                    Code::E173,
+                    e.span,
+                    e,
+                    format!("the input of this {what} is not connected"),
+                );
+                return;
+            }
+            _ => {}
+        }
+        match &e.kind {
+            Kind::Contact { negated, edge, var } => {
+                let n = format!("__ld_n{}", e.id);
+                let m = format!("__ld_m{}", e.id);
+                g(out, format!("{n} := "));
+                self.left(out, e);
+                match edge {
+                    EdgeKind::None => {
+                        g(out, if *negated { " AND NOT (" } else { " AND (" }.into());
+                        out.push(Piece::Copy(var.clone()));
+                        g(out, ");\n".into());
+                    }
+                    EdgeKind::Rising | EdgeKind::Falling => {
+                        let rising = *edge == EdgeKind::Rising;
+                        g(out, if rising { " AND (" } else { " AND NOT (" }.into());
+                        out.push(Piece::Copy(var.clone()));
+                        g(
+                            out,
+                            format!(") AND {}{m};\n{m} := ", if rising { "NOT " } else { "" }),
+                        );
+                        out.push(Piece::Copy(var.clone()));
+                        g(out, ";\n".into());
+                        self.hidden.push(m);
+                    }
+                }
+                self.hidden.push(n);
+            }
+            Kind::Coil {
+                negated,
+                storage,
+                edge,
+                var,
+            } => {
+                let n = format!("__ld_n{}", e.id);
+                let m = format!("__ld_m{}", e.id);
+                g(out, format!("{n} := "));
+                self.left(out, e);
+                g(out, ";\n".into());
+                match (storage, edge) {
+                    (Storage::Set, _) | (Storage::Reset, _) => {
+                        g(out, format!("IF {n} THEN "));
+                        out.push(Piece::Copy(var.clone()));
+                        g(
+                            out,
+                            format!(
+                                " := {}; END_IF;\n",
+                                if *storage == Storage::Set {
+                                    "TRUE"
+                                } else {
+                                    "FALSE"
+                                }
+                            ),
+                        );
+                    }
+                    (Storage::None, EdgeKind::None) => {
+                        out.push(Piece::Copy(var.clone()));
+                        g(
+                            out,
+                            format!(" := {}{n};\n", if *negated { "NOT " } else { "" }),
+                        );
+                    }
+                    (Storage::None, edge) => {
+                        out.push(Piece::Copy(var.clone()));
+                        let pulse = if *edge == EdgeKind::Rising {
+                            format!("{n} AND NOT {m}")
+                        } else {
+                            format!("NOT {n} AND {m}")
+                        };
+                        g(out, format!(" := {pulse};\n{m} := {n};\n"));
+                        self.hidden.push(m);
+                    }
+                }
+                self.hidden.push(n);
+            }
+            Kind::OutVar { negated, expr } => {
+                out.push(Piece::Copy(expr.clone()));
+                g(out, if *negated { " := NOT (" } else { " := (" }.into());
+                self.input(out, e, "output variable");
+                g(out, ");\n".into());
+            }
+            Kind::InOutVar { expr } => {
+                out.push(Piece::Copy(expr.clone()));
+                g(out, " := (".into());
+                self.input(out, e, "in-out variable");
+                g(out, ");\n".into());
+            }
+            Kind::Block {
+                type_name,
+                instance,
+            } => {
+                if let Some((_, vendor)) = VENDOR_BLOCKS
+                    .iter()
+                    .find(|(b, _)| b.eq_ignore_ascii_case(&type_name.text))
+                {
+                    let msg = format!(
+                        "unknown function block `{}`: a {vendor} block, not an IEC 61131-3 one",
+                        type_name.text
+                    );
+                    self.err(Code::E176, e.span, e, msg);
+                    return;
+                }
+                if instance.is_none()
+                    && matches!(
+                        type_name.text.to_ascii_uppercase().as_str(),
+                        "AND" | "OR" | "XOR" | "NOT" | "MOD"
+                    )
+                {
+                    // An operator whose result nothing reads does nothing.
+                    return;
+                }
+                self.pin_edges(out, e);
+                let callee = instance.clone().unwrap_or_else(|| type_name.clone());
+                self.call(out, e, &callee);
+                g(out, ";\n".into());
+            }
+            Kind::Label { name } => {
+                g(out, format!("{LABEL_MARK} := "));
+                out.push(Piece::Copy(name.clone()));
+                g(out, ";\n".into());
+            }
+            Kind::Jump { label } => {
+                g(out, "IF ".into());
+                self.input(out, e, "jump");
+                g(out, format!(" THEN {GOTO_MARK} := "));
+                out.push(Piece::Copy(label.clone()));
+                g(out, "; END_IF;\n".into());
+            }
+            Kind::Return => {
+                g(out, "IF ".into());
+                self.input(out, e, "return");
+                g(out, " THEN RETURN; END_IF;\n".into());
+            }
+            _ => {}
+        }
+    }
+
+    /// The statements that evaluate function `j` (they inline its call).
+    fn hosts(&self, j: usize, acc: &mut Vec<usize>, seen: &mut Vec<usize>) {
+        for &r in self.readers.get(j).into_iter().flatten() {
+            if seen.contains(&r) {
+                continue;
+            }
+            seen.push(r);
+            let e = self.el(r);
+            if is_statement(e) {
+                acc.push(r);
+            } else if is_function(e) {
+                self.hosts(r, acc, seen);
+            }
+        }
+    }
+
+    /// The statement elements `i` reads from (through functions and
+    /// connectors), for the data-flow order.
+    fn deps(&self, root: usize, i: usize, acc: &mut Vec<usize>, seen: &mut Vec<usize>) {
+        let e = self.el(i);
+        for p in &e.inputs {
+            for c in &p.conns {
+                let Some(&mut_j) = self.by_id.get(&c.from) else {
+                    continue;
+                };
+                let mut j = mut_j;
+                if let Kind::Continuation { name } = &self.el(j).kind {
+                    match self.connectors.get(name) {
+                        Some(&k) => j = k,
+                        None => continue,
+                    }
+                }
+                if seen.contains(&j) {
+                    continue;
+                }
+                seen.push(j);
+                let s = self.el(j);
+                if is_statement(s) {
+                    acc.push(j);
+                } else if is_function(s) || matches!(s.kind, Kind::Connector { .. }) {
+                    if is_function(s)
+                        && c.formal
+                            .as_deref()
+                            .is_some_and(|f| f.eq_ignore_ascii_case("ENO"))
+                    {
+                        // The function's ENO is set where its result is used.
+                        if self.readers[j].is_empty() {
+                            acc.push(j);
+                        }
+                        // Of several, the first by position (the others
+                        // set the same ENO again).
+                        let mut hs = Vec::new();
+                        self.hosts(j, &mut hs, &mut vec![j]);
+                        hs.retain(|&r| r != root);
+                        let net = self.net;
+                        let at =
+                            |r: usize| (net.elements[r].y, net.elements[r].x, net.elements[r].id);
+                        let first = hs.into_iter().min_by(|a, b| {
+                            at(*a)
+                                .partial_cmp(&at(*b))
+                                .unwrap_or(std::cmp::Ordering::Equal)
+                        });
+                        acc.extend(first);
+                    }
+                    self.deps(root, j, acc, seen);
+                }
+            }
+        }
+    }
+}
+
+/// Writes the network's hidden variables and statements.
+pub(crate) fn lower(imp: &mut Imp, net: &Network, ctx: &mut PouCtx) {
+    let n = net.elements.len();
+    let mut l = L {
+        net,
+        pou: ctx.pou().to_string(),
+        by_id: HashMap::new(),
+        connectors: HashMap::new(),
+        eno_read: vec![false; n],
+        readers: vec![Vec::new(); n],
+        hidden: Vec::new(),
+        diags: Vec::new(),
+        expanding: Vec::new(),
+    };
+    for (i, e) in net.elements.iter().enumerate() {
+        if l.by_id.insert(e.id, i).is_some() {
+            l.err(Code::E172, e.span, e, "two elements share this localId");
+        }
+        if let Kind::Connector { name } = &e.kind {
+            l.connectors.insert(name.clone(), i);
+        }
+    }
+    for (i, e) in net.elements.iter().enumerate() {
+        for p in &e.inputs {
+            for c in &p.conns {
+                if let Some(&j) = l.by_id.get(&c.from) {
+                    if c.formal
+                        .as_deref()
+                        .is_some_and(|f| f.eq_ignore_ascii_case("ENO"))
+                    {
+                        l.eno_read[j] = true;
+                    } else {
+                        l.readers[j].push(i);
+                    }
+                }
+            }
+        }
+    }
+    // A function whose result nothing reads is a statement of its own.
+    let own: Vec<bool> = net
+        .elements
+        .iter()
+        .enumerate()
+        .map(|(i, e)| is_statement(e) || (is_function(e) && l.readers[i].is_empty()))
+        .collect();
+    let order = order(&mut l, &own);
+    let mut body = Vec::new();
+    for i in order {
+        l.statement(&mut body, i);
+    }
+    for (code, span, msg) in std::mem::take(&mut l.diags) {
+        imp.error(code, span, msg);
+    }
+    let mut hidden = std::mem::take(&mut l.hidden);
+    hidden.sort();
+    hidden.dedup();
+    let at = net.elements.first().map_or(Span::default(), |e| e.span);
+    let at = Span::new(imp.file, at.start, at.start);
+    if !hidden.is_empty() {
+        imp.out.gen("\nVAR\n", at);
+        for h in &hidden {
+            imp.out.gen(&format!("{h} : BOOL;\n"), at);
+        }
+        imp.out.gen("END_VAR\n", at);
+    }
+    imp.out.gen("\n", at);
+    for p in body {
+        match p {
+            Piece::Gen(s, sp) => imp.out.gen(&s, sp),
+            Piece::Copy(t) => imp.out.copy(&t),
+        }
+    }
+}
+
+/// Where a statement sorts: its rung's top (y, x), the rung, its own
+/// (y, x) and `localId`.
+type OrderKey = (f64, f64, usize, f64, f64, u32);
+
+/// Execution order of the statement elements (see the module comment).
+fn order(l: &mut L, own: &[bool]) -> Vec<usize> {
+    let net = l.net;
+    let n = net.elements.len();
+    let stmts: Vec<usize> = (0..n).filter(|&i| own[i]).collect();
+    let pos = |i: usize| {
+        let e = &net.elements[i];
+        (e.y, e.x, e.id)
+    };
+    let by_pos = |a: &usize, b: &usize| {
+        let (pa, pb) = (pos(*a), pos(*b));
+        pa.partial_cmp(&pb).unwrap_or(std::cmp::Ordering::Equal)
+    };
+    // Dependencies (also needed for the loop check with an explicit order).
+    let mut deps: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for &i in &stmts {
+        let mut acc = Vec::new();
+        let mut seen = Vec::new();
+        l.deps(i, i, &mut acc, &mut seen);
+        acc.retain(|&j| j != i || matches!(net.elements[i].kind, Kind::Block { .. }));
+        deps[i] = acc;
+    }
+    if net.lang == GraphLang::Fbd && stmts.iter().any(|&i| net.elements[i].order.is_some()) {
+        let mut s = stmts.clone();
+        s.sort_by(|a, b| {
+            let ka = net.elements[*a].order.unwrap_or(u32::MAX);
+            let kb = net.elements[*b].order.unwrap_or(u32::MAX);
+            ka.cmp(&kb).then_with(|| by_pos(a, b))
+        });
+        check_loops(l, &stmts, &deps);
+        return s;
+    }
+    check_loops(l, &stmts, &deps);
+    // Rungs: groups of elements joined by wires, the rails left out.
+    let mut group: Vec<usize> = (0..n).collect();
+    fn find(g: &mut [usize], mut i: usize) -> usize {
+        while g[i] != i {
+            g[i] = g[g[i]];
+            i = g[i];
+        }
+        i
+    }
+    for (i, e) in net.elements.iter().enumerate() {
+        if matches!(e.kind, Kind::LeftRail | Kind::RightRail) {
+            continue;
+        }
+        let link = |j: usize, g: &mut Vec<usize>| {
+            if matches!(net.elements[j].kind, Kind::LeftRail | Kind::RightRail) {
+                return;
+            }
+            let (a, b) = (find(g, i), find(g, j));
+            g[a] = b;
+        };
+        for p in &e.inputs {
+            for c in &p.conns {
+                if let Some(&j) = l.by_id.get(&c.from) {
+                    link(j, &mut group);
+                }
+            }
+        }
+        if let Kind::Continuation { name } = &e.kind {
+            if let Some(&j) = l.connectors.get(name) {
+                link(j, &mut group);
+            }
+        }
+    }
+    let mut top: HashMap<usize, (f64, f64)> = HashMap::new();
+    for i in 0..n {
+        let r = find(&mut group, i);
+        let e = &net.elements[i];
+        let t = top.entry(r).or_insert((e.y, e.x));
+        if (e.y, e.x) < *t {
+            *t = (e.y, e.x);
+        }
+    }
+    let key = |i: usize, group: &mut Vec<usize>| {
+        let r = find(group, i);
+        let t = top.get(&r).copied().unwrap_or((0.0, 0.0));
+        let (y, x, id) = pos(i);
+        (t.0, t.1, r, y, x, id)
+    };
+    // Kahn's algorithm, always taking the first ready element by key.
+    let mut done = vec![false; n];
+    let mut out = Vec::with_capacity(stmts.len());
+    let mut keys: Vec<(usize, OrderKey)> = stmts.iter().map(|&i| (i, key(i, &mut group))).collect();
+    keys.sort_by(|a, b| a.1.partial_cmp(&b.1).unwrap_or(std::cmp::Ordering::Equal));
+    while out.len() < stmts.len() {
+        let ready = keys
+            .iter()
+            .find(|(i, _)| !done[*i] && deps[*i].iter().all(|&d| done[d] || d == *i));
+        match ready {
+            Some(&(i, _)) => {
+                done[i] = true;
+                out.push(i);
+            }
+            None => {
+                // A loop (E174, reported above): break it the loop at the first remaining element to go on.
+                if let Some(&(i, _)) = keys.iter().find(|(i, _)| !done[*i]) {
+                    done[i] = true;
+                    out.push(i);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// E174 for each element on a loop of wires (reported once per loop).
+fn check_loops(l: &mut L, stmts: &[usize], deps: &[Vec<usize>]) {
+    let net = l.net;
+    let n = net.elements.len();
+    // 0 unvisited, 1 on the stack, 2 done: iterative depth-first search.
+    let mut state = vec![0u8; n];
+    for &s in stmts {
+        if state[s] != 0 {
+            continue;
+        }
+        let mut stack = vec![(s, 0usize)];
+        state[s] = 1;
+        while let Some(&mut (v, ref mut k)) = stack.last_mut() {
+            match deps[v].get(*k) {
+                Some(&w) => {
+                    *k += 1;
+                    if w == v {
+                        if matches!(net.elements[v].kind, Kind::Block { .. }) {
+                            let e = &net.elements[v];
+                            l.err(Code::E174, e.span, e, "this block's output comes back to its own input without a variable");
+                        }
+                    } else if state[w] == 1 {
+                        let e = &net.elements[w];
+                        l.err(Code::E174, e.span, e, "a loop of connections without a feedback variable passes through this element");
+                    } else if state[w] == 0 {
+                        state[w] = 1;
+                        stack.push((w, 0));
+                    }
+                }
+                None => {
+                    state[v] = 2;
+                    stack.pop();
+                }
+            }
+        }
+    }
+    l.diags.dedup_by(|a, b| a.2 == b.2);
+}

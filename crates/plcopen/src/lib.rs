@@ -1,0 +1,252 @@
+//! PLCopen TC6 XML (schema 2.01 and 2.0) into automat's trees.
+//!
+//! [`import`] reads one XML file with `roxmltree` and returns the same
+//! [`Parsed`] the ST parser returns: data types, POUs with every variable
+//! section, ST and IL bodies, LD and FBD networks, configurations with
+//! their resources, tasks, program instances and globals. Everything after
+//! it (checker, lowering, both engines) is unchanged.
+//!
+//! How: each element is written as the Structured Text it means into one
+//! generated text (`out.rs`), which the ST parser parses (so IL bodies are
+//! desugared as in `.il` files, and a malformed expression gets the ST
+//! parser's message); every span of the tree and of the diagnostics is then
+//! moved back to the XML bytes it came from (`remap.rs`). LD and FBD bodies
+//! are read into the graphical network model of [`graph`] and lowered to
+//! ST statements in their execution order (`graph/lower.rs` states the
+//! rules).
+//!
+//! Invariants: never panics on any input; every diagnostic has a code
+//! (E170–E177 for the importer's own) and a span in the XML file; names
+//! from attributes are checked to be identifiers before they are written
+//! into the generated text, so an attribute can never change the structure
+//! of the program around it.
+
+mod config;
+mod decl;
+mod export;
+pub mod graph;
+mod names;
+pub(crate) mod out;
+mod pou;
+mod remap;
+mod sfc;
+pub mod xml;
+
+use automat_base::{Code, Diagnostic, FileId, Interner, Span};
+use automat_syntax::ast::{Body, Expr, ExprKind, Item, SourceUnit, Stmt, StmtKind};
+use automat_syntax::Parsed;
+pub use export::export;
+use out::Out;
+use roxmltree::{Document, Node, ParsingOptions};
+
+/// Whether a source file is read by this importer (by its name).
+pub fn is_plcopen_file(name: &str) -> bool {
+    name.rsplit('.')
+        .next()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+        && name.contains('.')
+}
+
+/// Caps the tree a file may build (a fuzzed file cannot exhaust memory).
+const NODES_LIMIT: u32 = 4_000_000;
+
+/// The Structured Text an XML file is read as (for tests and for looking at
+/// what an LD or FBD body means), with the importer's own diagnostics.
+pub fn generated_st(file: FileId, src: &str) -> (String, Vec<Diagnostic>) {
+    let imp = generate(file, src);
+    (imp.out.text, imp.diags)
+}
+
+/// Reads one PLCopen XML file. Never panics, never fails: errors are
+/// diagnostics next to the tree of what could be read.
+pub fn import(file: FileId, src: &str, interner: &mut Interner) -> Parsed {
+    let imp = generate(file, src);
+    let Imp { out, diags, .. } = imp;
+    let parsed = automat_syntax::parse(file, &out.text, interner);
+    finish(file, out, diags, parsed, interner)
+}
+
+fn generate<'s>(file: FileId, src: &'s str) -> Imp<'s> {
+    let mut imp = Imp {
+        file,
+        src,
+        out: Out::default(),
+        diags: Vec::new(),
+    };
+    let opts = ParsingOptions {
+        allow_dtd: false,
+        nodes_limit: NODES_LIMIT,
+        ..ParsingOptions::default()
+    };
+    match Document::parse_with_options(src, opts) {
+        Ok(doc) => imp.project(doc.root_element()),
+        Err(e) => {
+            let pos = e.pos();
+            let at = offset_of(src, pos.row, pos.col);
+            imp.error(
+                Code::E170,
+                Span::new(file, at, at),
+                format!("not well-formed XML: {e}"),
+            );
+        }
+    }
+    imp
+}
+
+fn finish(
+    file: FileId,
+    out: Out,
+    mut diags: Vec<Diagnostic>,
+    parsed: Parsed,
+    interner: &mut Interner,
+) -> Parsed {
+    let remap = remap::Remap { out: &out };
+    let mut unit = parsed.unit;
+    for item in &mut unit.items {
+        remap.item(item);
+    }
+    let jumps = Jumps {
+        goto: interner.intern(graph::lower::GOTO_MARK),
+        label: interner.intern(graph::lower::LABEL_MARK),
+    };
+    for item in &mut unit.items {
+        if let Item::Pou(p) = item {
+            let Body::St(stmts) = &mut p.body;
+            jumps.rewrite(stmts);
+        }
+    }
+    for mut d in parsed.diagnostics {
+        remap.diag(&mut d);
+        diags.push(d);
+    }
+    diags.sort_by_key(|d| d.span.start);
+    Parsed {
+        unit: SourceUnit {
+            file,
+            items: unit.items,
+        },
+        diagnostics: diags,
+    }
+}
+
+/// The byte offset of a 1-based row and column (as `roxmltree` reports).
+fn offset_of(src: &str, row: u32, col: u32) -> u32 {
+    let mut off = 0usize;
+    for (i, line) in src.split_inclusive('\n').enumerate() {
+        if i + 1 == row as usize {
+            let col = (col as usize).saturating_sub(1);
+            let mut k = line.char_indices().nth(col).map_or(line.len(), |(k, _)| k);
+            k = k.min(line.len());
+            return (off + k) as u32;
+        }
+        off += line.len();
+    }
+    src.len() as u32
+}
+
+/// Graphical jumps and labels are written as marker assignments
+/// (`__PLCOPEN_GOTO := L;`) because ST has no jump syntax; they become the
+/// internal `Goto`/`Label` statements here, which the checker verifies
+/// (E105–E107) and lowering compiles as IL jumps.
+struct Jumps {
+    goto: automat_base::Symbol,
+    label: automat_base::Symbol,
+}
+
+impl Jumps {
+    fn rewrite(&self, stmts: &mut [Stmt]) {
+        for s in stmts {
+            let marker = match &s.kind {
+                StmtKind::Assign {
+                    target:
+                        Expr {
+                            kind: ExprKind::Name(t),
+                            ..
+                        },
+                    value:
+                        Expr {
+                            kind: ExprKind::Name(v),
+                            ..
+                        },
+                } if t.sym == self.goto || t.sym == self.label => Some((t.sym == self.goto, *v)),
+                _ => None,
+            };
+            match marker {
+                Some((true, l)) => s.kind = StmtKind::Goto(l),
+                Some((false, l)) => s.kind = StmtKind::Label(l),
+                None => {
+                    if let StmtKind::If {
+                        branches,
+                        else_body,
+                    } = &mut s.kind
+                    {
+                        for b in branches {
+                            self.rewrite(&mut b.body);
+                        }
+                        if let Some(e) = else_body {
+                            self.rewrite(e);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The importer's state for one file.
+pub(crate) struct Imp<'s> {
+    pub file: FileId,
+    pub src: &'s str,
+    pub out: Out,
+    pub diags: Vec<Diagnostic>,
+}
+
+impl<'s> Imp<'s> {
+    pub fn error(&mut self, code: Code, span: Span, msg: impl Into<String>) {
+        self.diags.push(Diagnostic::error(code, span, msg));
+    }
+
+    pub fn span(&self, n: Node) -> Span {
+        xml::span(self.file, n)
+    }
+
+    /// Generated words standing for element `n`.
+    pub fn gen(&mut self, s: &str, n: Node) {
+        let sp = self.span(n);
+        self.out.gen(s, sp);
+    }
+
+    fn project(&mut self, root: Node) {
+        if !xml::is(root, "project") {
+            let sp = self.span(root);
+            self.error(
+                Code::E170,
+                sp,
+                format!(
+                    "the root element is `{}`, not a PLCopen TC6 `project`",
+                    root.tag_name().name()
+                ),
+            );
+            return;
+        }
+        if let Some(types) = xml::child(root, "types") {
+            if let Some(dts) = xml::child(types, "dataTypes") {
+                for dt in xml::children(dts, "dataType") {
+                    self.data_type(dt);
+                }
+            }
+            if let Some(pous) = xml::child(types, "pous") {
+                for p in xml::children(pous, "pou") {
+                    self.pou(p);
+                }
+            }
+        }
+        if let Some(inst) = xml::child(root, "instances") {
+            if let Some(cfgs) = xml::child(inst, "configurations") {
+                for c in xml::children(cfgs, "configuration") {
+                    self.configuration(c);
+                }
+            }
+        }
+    }
+}

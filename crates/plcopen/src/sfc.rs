@@ -1,0 +1,346 @@
+//! Graphical SFC bodies (`<SFC>`) as textual SFC, which the ST parser reads
+//! and desugars like a `.st` chart.
+//!
+//! Steps become `STEP`/`INITIAL_STEP` with the associations of the action
+//! blocks wired to them; each transition becomes `TRANSITION FROM … TO …`
+//! with the steps found by following its wires back (through selection
+//! divergences and simultaneous convergences) and forward (through
+//! simultaneous divergences, selection convergences and jumps to a step).
+//! Conditions are inline ST or IL, or a reference to a transition of the
+//! POU; actions are the POU's actions or inline bodies of an action block
+//! (named `__ab<localId>_<n>`).
+
+use crate::xml::{self, Text};
+use crate::Imp;
+use automat_base::Code;
+use roxmltree::Node;
+use std::collections::HashMap;
+
+/// The wires of one body: element by `localId`, and who reads whom.
+struct Wires<'a, 'i> {
+    by_id: HashMap<u32, Node<'a, 'i>>,
+    readers: HashMap<u32, Vec<u32>>,
+}
+
+fn local_id(n: Node) -> Option<u32> {
+    xml::attr_str(n, "localId").and_then(|v| v.trim().parse().ok())
+}
+
+/// The `refLocalId`s of an element's own `connectionPointIn`s.
+fn sources(n: Node) -> Vec<u32> {
+    xml::children(n, "connectionPointIn")
+        .flat_map(|cp| xml::children(cp, "connection"))
+        .filter_map(|c| xml::attr_str(c, "refLocalId").and_then(|v| v.trim().parse().ok()))
+        .collect()
+}
+
+/// Text without one trailing `;` (an ST condition may end with one).
+fn without_semicolon(t: &Text) -> Text {
+    let t = t.trimmed();
+    match t.text.strip_suffix(';') {
+        Some(s) => Text {
+            text: s.to_string(),
+            raw: t
+                .raw
+                .get(..=s.len())
+                .map(<[u32]>::to_vec)
+                .unwrap_or_default(),
+        }
+        .trimmed(),
+        None => t,
+    }
+}
+
+impl Imp<'_> {
+    pub fn sfc(&mut self, body: Node, pou: Node, pou_name: &str) {
+        let mut w = Wires {
+            by_id: HashMap::new(),
+            readers: HashMap::new(),
+        };
+        for e in xml::elements(body) {
+            let Some(id) = local_id(e) else { continue };
+            if w.by_id.insert(id, e).is_some() {
+                let sp = self.span(e);
+                self.error(
+                    Code::E172,
+                    sp,
+                    format!("POU `{pou_name}`: two elements share localId {id}"),
+                );
+            }
+            for s in sources(e) {
+                w.readers.entry(s).or_default().push(id);
+            }
+        }
+        let mut actions: Vec<(String, Text, Node)> = Vec::new();
+        self.gen("\n", body);
+        for e in xml::elements(body) {
+            match e.tag_name().name() {
+                "step" => self.step(e, &w, pou_name, &mut actions),
+                "transition" => self.transition(e, &w, pou, pou_name),
+                "selectionDivergence"
+                | "selectionConvergence"
+                | "simultaneousDivergence"
+                | "simultaneousConvergence"
+                | "jumpStep"
+                | "actionBlock"
+                | "comment"
+                | "addData" => {}
+                other => {
+                    let sp = self.span(e);
+                    self.error(
+                        Code::E171,
+                        sp,
+                        format!("POU `{pou_name}`: `{other}` in an SFC body is not supported"),
+                    );
+                }
+            }
+        }
+        if let Some(acts) = xml::child(pou, "actions") {
+            for a in xml::children(acts, "action") {
+                let Some(name) = self.name_attr(a, "name", "an action's name") else {
+                    continue;
+                };
+                let Some(lang) = xml::child(a, "body").and_then(|b| {
+                    xml::elements(b).find(|l| matches!(l.tag_name().name(), "ST" | "IL"))
+                }) else {
+                    let sp = self.span(a);
+                    self.error(
+                        Code::E171,
+                        sp,
+                        format!(
+                            "action `{}`: only ST and IL action bodies are supported",
+                            name.text
+                        ),
+                    );
+                    continue;
+                };
+                self.gen("\nACTION ", a);
+                self.out.copy(&name);
+                self.gen(":\n", a);
+                let t = xml::formatted(self.src, lang);
+                self.out.copy(&t);
+                self.gen("\nEND_ACTION\n", a);
+            }
+        }
+        for (name, text, at) in actions {
+            self.gen(&format!("\nACTION {name}:\n"), at);
+            self.out.copy(&text);
+            self.gen("\nEND_ACTION\n", at);
+        }
+    }
+
+    fn step<'a, 'i>(
+        &mut self,
+        e: Node<'a, 'i>,
+        w: &Wires<'a, 'i>,
+        pou_name: &str,
+        actions: &mut Vec<(String, Text, Node<'a, 'i>)>,
+    ) {
+        let Some(name) = self.name_attr(e, "name", "a step's name") else {
+            return;
+        };
+        self.gen(
+            if xml::flag(e, "initialStep") {
+                "INITIAL_STEP "
+            } else {
+                "STEP "
+            },
+            e,
+        );
+        self.out.copy(&name);
+        self.gen(":\n", e);
+        let id = local_id(e).unwrap_or(u32::MAX);
+        for r in w.readers.get(&id).into_iter().flatten() {
+            let Some(block) = w.by_id.get(r).filter(|b| xml::is(**b, "actionBlock")) else {
+                continue;
+            };
+            for (k, a) in xml::children(*block, "action").enumerate() {
+                let q = xml::attr_str(a, "qualifier").unwrap_or("N").trim();
+                if automat_syntax::ast::sfc::Qualifier::parse(q).is_none() {
+                    let sp = self.span(a);
+                    self.error(
+                        Code::E171,
+                        sp,
+                        format!("POU `{pou_name}`: unknown action qualifier `{q}`"),
+                    );
+                    continue;
+                }
+                if let Some(rf) = xml::child(a, "reference") {
+                    let Some(n) = self.name_attr(rf, "name", "an action's name") else {
+                        continue;
+                    };
+                    self.out.copy(&n);
+                } else if let Some(lang) = xml::child(a, "inline").and_then(|i| {
+                    xml::elements(i).find(|l| matches!(l.tag_name().name(), "ST" | "IL"))
+                }) {
+                    let bid = local_id(*block).unwrap_or(0);
+                    let n = format!("__ab{bid}_{k}");
+                    self.gen(&n, a);
+                    actions.push((n, xml::formatted(self.src, lang), a));
+                } else {
+                    let sp = self.span(a);
+                    self.error(
+                        Code::E171,
+                        sp,
+                        format!("POU `{pou_name}`: an action without a reference or an ST/IL body"),
+                    );
+                    continue;
+                }
+                self.gen("(", a);
+                self.gen(q, a);
+                if let Some(d) = xml::attr(self.src, a, "duration").map(|d| d.trimmed()) {
+                    if !d.text.is_empty() {
+                        self.gen(", ", a);
+                        self.expr_text(&d, a, false);
+                    }
+                }
+                self.gen(");\n", a);
+            }
+        }
+        self.gen("END_STEP\n", e);
+    }
+
+    /// Steps before a transition (through selection divergences and
+    /// simultaneous convergences).
+    fn back(&mut self, id: u32, w: &Wires, seen: &mut Vec<u32>, out: &mut Vec<Text>) {
+        if seen.contains(&id) {
+            return;
+        }
+        seen.push(id);
+        let Some(&e) = w.by_id.get(&id) else { return };
+        match e.tag_name().name() {
+            "step" => out.extend(xml::attr(self.src, e, "name").map(|t| t.trimmed())),
+            "selectionDivergence" | "simultaneousConvergence" => {
+                for s in sources(e) {
+                    self.back(s, w, seen, out);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Steps after a transition (through simultaneous divergences,
+    /// selection convergences and jumps).
+    fn forward(&mut self, id: u32, w: &Wires, seen: &mut Vec<u32>, out: &mut Vec<Text>) {
+        for r in w.readers.get(&id).into_iter().flatten() {
+            if seen.contains(r) {
+                continue;
+            }
+            seen.push(*r);
+            let Some(&e) = w.by_id.get(r) else { continue };
+            match e.tag_name().name() {
+                "step" => out.extend(xml::attr(self.src, e, "name").map(|t| t.trimmed())),
+                "jumpStep" => out.extend(xml::attr(self.src, e, "targetName").map(|t| t.trimmed())),
+                "simultaneousDivergence" | "selectionConvergence" => self.forward(*r, w, seen, out),
+                _ => {}
+            }
+        }
+    }
+
+    fn transition(&mut self, e: Node, w: &Wires, pou: Node, pou_name: &str) {
+        let id = local_id(e).unwrap_or(u32::MAX);
+        let (mut from, mut to) = (Vec::new(), Vec::new());
+        for s in sources(e) {
+            self.back(s, w, &mut vec![id], &mut from);
+        }
+        self.forward(id, w, &mut vec![id], &mut to);
+        let sp = self.span(e);
+        if from.is_empty() || to.is_empty() {
+            self.error(
+                Code::E173,
+                sp,
+                format!(
+                    "POU `{pou_name}`, localId {id}: the transition has no step {}",
+                    if from.is_empty() {
+                        "before it"
+                    } else {
+                        "after it"
+                    }
+                ),
+            );
+            return;
+        }
+        if from
+            .iter()
+            .chain(&to)
+            .any(|t| !crate::names::is_identifier(&t.text))
+        {
+            self.error(
+                Code::E177,
+                sp,
+                format!("POU `{pou_name}`, localId {id}: a step name is not an identifier"),
+            );
+            return;
+        }
+        self.gen("TRANSITION ", e);
+        if let Some(p) = xml::attr_str(e, "priority")
+            .map(str::trim)
+            .filter(|p| p.chars().all(|c| c.is_ascii_digit()) && !p.is_empty())
+        {
+            self.gen(&format!("(PRIORITY := {p}) "), e);
+        }
+        self.gen("FROM ", e);
+        self.step_list(&from, e);
+        self.gen(" TO ", e);
+        self.step_list(&to, e);
+        let cond = xml::child(e, "condition");
+        let inline = cond
+            .and_then(|c| xml::child(c, "inline"))
+            .and_then(|i| xml::elements(i).find(|l| matches!(l.tag_name().name(), "ST" | "IL")));
+        let referenced = cond.and_then(|c| xml::child(c, "reference")).and_then(|r| {
+            let name = xml::attr_str(r, "name")?.trim().to_string();
+            let ts = xml::child(pou, "transitions")?;
+            let t = xml::children(ts, "transition").find(|t| {
+                xml::attr_str(*t, "name").is_some_and(|n| n.trim().eq_ignore_ascii_case(&name))
+            })?;
+            xml::child(t, "body")
+                .and_then(|b| xml::elements(b).find(|l| matches!(l.tag_name().name(), "ST" | "IL")))
+        });
+        match inline.or(referenced) {
+            Some(lang) if lang.tag_name().name() == "IL" => {
+                self.gen(" :\n", e);
+                let t = xml::formatted(self.src, lang);
+                self.out.copy(&t);
+                self.gen("\nEND_TRANSITION\n", e);
+            }
+            Some(lang) => {
+                let t = xml::formatted(self.src, lang).trimmed();
+                let t = match t.text.strip_prefix(":=") {
+                    Some(_) => Text {
+                        text: t.text.get(2..).unwrap_or("").to_string(),
+                        raw: t.raw.get(2..).map(<[u32]>::to_vec).unwrap_or_default(),
+                    },
+                    None => t,
+                };
+                self.gen(" := ", e);
+                let t = without_semicolon(&t);
+                self.expr_text(&t, lang, true);
+                self.gen(";\nEND_TRANSITION\n", e);
+            }
+            None => {
+                self.error(
+                    Code::E171,
+                    sp,
+                    format!("POU `{pou_name}`, localId {id}: the transition's condition is neither inline ST/IL nor a reference to a transition of the POU"),
+                );
+                self.gen(" := FALSE;\nEND_TRANSITION\n", e);
+            }
+        }
+    }
+
+    fn step_list(&mut self, steps: &[Text], at: Node) {
+        let many = steps.len() > 1;
+        if many {
+            self.gen("(", at);
+        }
+        for (k, s) in steps.iter().enumerate() {
+            if k > 0 {
+                self.gen(", ", at);
+            }
+            self.out.copy(s);
+        }
+        if many {
+            self.gen(")", at);
+        }
+    }
+}

@@ -1,0 +1,219 @@
+//! The importer's diagnostics: each case is a small PLCopen file and the
+//! `line:col: error[Ennn]` lines `automat check` must print for it (the
+//! code and the XML position of the element; the message names the POU and
+//! the `localId`). The checker's own errors in LD/FBD code point at the
+//! XML too (a type mismatch at a pin).
+
+use automat_base::{render, Interner, SourceMap};
+
+const HEAD: &str = r#"<project xmlns="http://www.plcopen.org/xml/tc6_0201">
+<types><dataTypes/><pous>
+"#;
+const TAIL: &str = "\n</pous></types></project>\n";
+
+/// A program `P` with `vars` (a localVars list) and an LD/FBD body.
+fn program(vars: &str, lang: &str, body: &str) -> String {
+    format!(
+        "{HEAD}<pou name=\"P\" pouType=\"program\"><interface><localVars>{vars}</localVars></interface>\n<body><{lang}>\n{body}\n</{lang}></body></pou>{TAIL}"
+    )
+}
+
+fn check(text: &str) -> String {
+    let mut map = SourceMap::new();
+    map.add("t.xml", text);
+    let mut interner = Interner::new();
+    let (_, analysis) = automat_vendor::check_sources(&map, &mut interner, &[]);
+    render::render_report(&map, &analysis.diagnostics)
+}
+
+/// The `t.xml:L:C: error[Ennn]: message` lines of a report.
+fn heads(report: &str) -> Vec<String> {
+    report
+        .lines()
+        .filter(|l| l.starts_with("t.xml:"))
+        .map(|l| l.trim_start_matches("t.xml:").to_string())
+        .collect()
+}
+
+fn expect(text: &str, want: &[&str]) {
+    let report = check(text);
+    let got = heads(&report);
+    assert_eq!(got.len(), want.len(), "{report}");
+    for (g, w) in got.iter().zip(want) {
+        assert!(
+            g.starts_with(w) || g.contains(w),
+            "got `{g}`, want `{w}`\n{report}"
+        );
+    }
+}
+
+const BOOLS: &str = r#"<variable name="a"><type><BOOL/></type></variable><variable name="q"><type><BOOL/></type></variable><variable name="n"><type><INT/></type></variable>"#;
+
+#[test]
+fn not_xml() {
+    expect(
+        "<project><types></project>",
+        &["1:17: error[E170]: not well-formed XML: expected 'types' tag, not 'project'"],
+    );
+    expect(
+        "<other/>",
+        &["1:1: error[E170]: the root element is `other`"],
+    );
+}
+
+#[test]
+fn missing_attributes_and_names() {
+    let t = format!("{HEAD}<pou pouType=\"program\"><body><ST/></body></pou>{TAIL}");
+    expect(
+        &t,
+        &["3:1: error[E171]: `pou` without the `name` attribute"],
+    );
+    let t = format!("{HEAD}<pou name=\"1P\" pouType=\"program\"><body><ST/></body></pou>{TAIL}");
+    expect(
+        &t,
+        &["3:12: error[E177]: a POU's name `1P` is not an identifier"],
+    );
+    let t = format!("{HEAD}<pou name=\"P\" pouType=\"class\"><body><ST/></body></pou>{TAIL}");
+    expect(&t, &["3:1: error[E171]: POU `P`: `pouType` is `class`"]);
+}
+
+#[test]
+fn missing_local_id() {
+    let t = program(
+        BOOLS,
+        "LD",
+        r#"<leftPowerRail localId="1"/>
+<coil localId="3"><connectionPointIn><connection refLocalId="9"/></connectionPointIn><variable>q</variable></coil>"#,
+    );
+    expect(
+        &t,
+        &["6:38: error[E172]: POU `P`, localId 3: a connection names localId 9"],
+    );
+}
+
+#[test]
+fn unconnected_input_and_coil_without_left() {
+    let t = program(
+        BOOLS,
+        "LD",
+        r#"<coil localId="3"><connectionPointIn/><variable>q</variable></coil>
+<outVariable localId="4"><connectionPointIn/><expression>n</expression></outVariable>"#,
+    );
+    expect(
+        &t,
+        &[
+            "5:1: error[E175]: POU `P`, localId 3: nothing is connected on the left",
+            "6:1: error[E173]: POU `P`, localId 4: the input of this output variable is not connected",
+        ],
+    );
+    let t = program(
+        BOOLS,
+        "FBD",
+        r#"<inVariable localId="1"><expression>n</expression></inVariable>
+<block localId="2" typeName="ADD"><inputVariables><variable formalParameter="IN1"><connectionPointIn><connection refLocalId="1"/></connectionPointIn></variable><variable formalParameter="IN2"><connectionPointIn/></variable></inputVariables><outputVariables><variable formalParameter="OUT"/></outputVariables></block>
+<outVariable localId="3"><connectionPointIn><connection refLocalId="2" formalParameter="OUT"/></connectionPointIn><expression>n</expression></outVariable>"#,
+    );
+    // The checker then counts the arguments the call has (E050).
+    expect(
+        &t,
+        &[
+            "6:51: error[E050]",
+            "6:161: error[E173]: POU `P`, localId 2: input `IN2` of `ADD` is not connected",
+        ],
+    );
+}
+
+#[test]
+fn loop_without_feedback_variable() {
+    let vars = r#"<variable name="i1"><type><derived name="TON"/></type></variable><variable name="i2"><type><derived name="TON"/></type></variable>"#;
+    let t = program(
+        vars,
+        "FBD",
+        r#"<block localId="1" typeName="TON" instanceName="i1"><inputVariables><variable formalParameter="IN"><connectionPointIn><connection refLocalId="2" formalParameter="Q"/></connectionPointIn></variable></inputVariables><outputVariables><variable formalParameter="Q"/></outputVariables></block>
+<block localId="2" typeName="TON" instanceName="i2"><inputVariables><variable formalParameter="IN"><connectionPointIn><connection refLocalId="1" formalParameter="Q"/></connectionPointIn></variable></inputVariables><outputVariables><variable formalParameter="Q"/></outputVariables></block>"#,
+    );
+    expect(
+        &t,
+        &["5:1: error[E174]: POU `P`, localId 1: a loop of connections"],
+    );
+}
+
+#[test]
+fn vendor_block() {
+    let vars = r#"<variable name="p"><type><derived name="python_eval"/></type></variable>"#;
+    let t = program(
+        vars,
+        "FBD",
+        r#"<block localId="1" typeName="python_eval" instanceName="p"><inputVariables/><outputVariables/></block>"#,
+    );
+    let report = check(&t);
+    assert!(
+        report.contains("5:1: error[E176]: POU `P`, localId 1: unknown function block `python_eval`: a Beremiz block"),
+        "{report}"
+    );
+}
+
+#[test]
+fn type_mismatch_at_a_pin_points_at_the_wire() {
+    // `n` (INT) on a contact: the checker's error is at the contact's wire.
+    let t = program(
+        BOOLS,
+        "LD",
+        r#"<leftPowerRail localId="1"/>
+<contact localId="2"><connectionPointIn><connection refLocalId="1"/></connectionPointIn><variable>n</variable></contact>
+<coil localId="3"><connectionPointIn><connection refLocalId="2"/></connectionPointIn><variable>q</variable></coil>"#,
+    );
+    let report = check(&t);
+    assert!(
+        report.contains("t.xml:6:41: error[E031]: operator `AND` is not defined for BOOL and INT"),
+        "{report}"
+    );
+}
+
+#[test]
+fn st_body_errors_keep_their_position() {
+    let t = format!(
+        "{HEAD}<pou name=\"P\" pouType=\"program\"><interface><localVars>{BOOLS}</localVars></interface>\n<body><ST><xhtml:p xmlns:xhtml=\"http://www.w3.org/1999/xhtml\"><![CDATA[q := a;\n  n := nope;]]></xhtml:p></ST></body></pou>{TAIL}"
+    );
+    expect(&t, &["5:8: error[E020]"]);
+    // Entities are decoded and positions still exact.
+    let t = format!(
+        "{HEAD}<pou name=\"P\" pouType=\"program\"><interface><localVars>{BOOLS}</localVars></interface>\n<body><ST><xhtml:p xmlns:xhtml=\"http://www.w3.org/1999/xhtml\">q := n &lt; 3 AND nope;</xhtml:p></ST></body></pou>{TAIL}"
+    );
+    expect(&t, &["4:81: error[E020]"]);
+}
+
+/// Every code of the importer (E170–E179) has a case in this file.
+#[test]
+fn every_importer_code_is_covered() {
+    let me = include_str!("diagnostics.rs");
+    for c in automat_base::Code::ALL
+        .iter()
+        .filter(|c| c.as_str().starts_with("E17"))
+    {
+        let needle = format!("error[{}]", c.as_str());
+        // Split so this test's own text does not count.
+        assert!(
+            me.matches(&needle).count() >= 1,
+            "no case for {}",
+            c.as_str()
+        );
+    }
+}
+
+#[test]
+fn export_refuses_what_tc6_cannot_hold() {
+    let mut map = SourceMap::new();
+    map.add("g.st", "VAR_GLOBAL x : INT; END_VAR\nPROGRAM P VAR_EXTERNAL x : INT; END_VAR x := 1; END_PROGRAM\n");
+    let mut interner = Interner::new();
+    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &[]);
+    assert!(!analysis.has_errors());
+    let Err(d) = automat_plcopen::export(&units, &map, "g") else {
+        panic!("exported a global outside a configuration");
+    };
+    let report = render::render_report(&map, &d);
+    assert!(
+        report.contains("g.st:1:1: error[E178]: a VAR_GLOBAL outside a CONFIGURATION"),
+        "{report}"
+    );
+}
