@@ -41,6 +41,7 @@ fn walk(dir: &Path, out: &mut Vec<PathBuf>) -> Result<(), String> {
             .extension()
             .and_then(|e| e.to_str())
             .is_some_and(|e| SOURCE_EXTENSIONS.iter().any(|x| x.eq_ignore_ascii_case(e)))
+            || automat_vendor::is_fst_file(&path.to_string_lossy())
         {
             out.push(path);
         }

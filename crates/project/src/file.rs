@@ -384,10 +384,13 @@ fn safe_values(
     });
 }
 
+/// A source file: `*.st`, or a file of the FST dialect (`*.stl`,
+/// `allocation.txt`), which is read only with `libraries = ["fst"]`.
 fn is_st(p: &Path) -> bool {
     p.extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("st"))
+        || automat_vendor::is_fst_file(&p.to_string_lossy())
 }
 
 /// Every `*.st` under `dir` (recursively when `deep`), sorted.
