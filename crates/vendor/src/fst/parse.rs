@@ -187,6 +187,18 @@ impl<'a> Parser<'a> {
                 let code = if t.up == "IF" { Code::E185 } else { Code::E186 };
                 self.error(code, self.span(t), why);
                 self.i += 1;
+                // The rest of an IF sentence is not reported again.
+                if code == Code::E185 {
+                    while self
+                        .peek()
+                        .is_some_and(|t| !matches!(t.up.as_str(), "THEN" | "STEP"))
+                    {
+                        self.i += 1;
+                    }
+                    if self.at("THEN") {
+                        self.i += 1;
+                    }
+                }
                 let _ = self.instrs();
             }
             Body::Executive(list)
