@@ -11,7 +11,7 @@ use automat_base::{Interner, SourceMap};
 use automat_engine::Engine;
 use automat_iec::Elementary;
 use automat_lower::{lower, LowerOptions};
-use automat_runtime::{resolve, value, PlaceType};
+use automat_runtime::{resolve, value, Executor, PlaceType};
 use automat_vendor::Dialect;
 use std::path::{Path, PathBuf};
 
@@ -85,7 +85,7 @@ fn parse_case(text: &str) -> Case {
     case
 }
 
-fn write(engine: &mut Engine, path: &str, val: &str) {
+fn write<E: Executor>(engine: &mut E, path: &str, val: &str) {
     let place = resolve(engine.program(), path).unwrap_or_else(|e| panic!("{path}: {e}"));
     let image = engine.image_mut();
     let at = place.offset as usize;
@@ -106,7 +106,7 @@ fn write(engine: &mut Engine, path: &str, val: &str) {
     }
 }
 
-fn run_case(path: &Path) -> Result<(), String> {
+fn run_case(path: &Path, jit: bool) -> Result<(), String> {
     let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
     let case = parse_case(&text);
     let mut map = SourceMap::new();
@@ -152,12 +152,22 @@ fn run_case(path: &Path) -> Result<(), String> {
         &LowerOptions { program: None },
     )
     .map_err(|d| automat_base::render::render_report(&map, &d))?;
-    let mut engine = Engine::new(program);
+    if jit {
+        let mut j =
+            automat_jit::Jit::new(program).map_err(|e| format!("the JIT refused it: {e}"))?;
+        run_scans(&mut j, &case)
+    } else {
+        run_scans(&mut Engine::new(program), &case)
+    }
+}
+
+/// Runs the scans of a case, setting its inputs and comparing its values.
+fn run_scans<E: Executor>(engine: &mut E, case: &Case) -> Result<(), String> {
     let last = case.expects.iter().map(|e| e.0).max().unwrap_or(0);
     let mut failures = Vec::new();
     for scan in 1..=last {
         for (_, p, v) in case.sets.iter().filter(|s| s.0 == scan) {
-            write(&mut engine, p, v);
+            write(engine, p, v);
         }
         let now = (scan as i64 - 1) * 10_000_000;
         let insts: Vec<_> = engine
@@ -198,9 +208,84 @@ fn fst_cases() {
     assert!(cases.len() >= 18, "the D3 examples are cases");
     let mut bad = Vec::new();
     for c in &cases {
-        if let Err(e) = run_case(c) {
-            bad.push(format!("{}:\n{e}", c.display()));
+        for jit in [false, true] {
+            if let Err(e) = run_case(c, jit) {
+                let on = if jit { "JIT" } else { "interpreter" };
+                bad.push(format!("{} ({on}):\n{e}", c.display()));
+            }
         }
     }
     assert!(bad.is_empty(), "{}", bad.join("\n\n"));
+}
+
+/// Bad input never panics: every case's STL files with one word deleted,
+/// or cut short, at many places, still give diagnostics or a program.
+#[test]
+fn mutated_cases_never_panic() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/fst");
+    let mut cases: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "fst"))
+        .collect();
+    cases.sort();
+    let mut tried = 0;
+    for c in &cases {
+        let text = std::fs::read_to_string(c).unwrap_or_default();
+        let case = parse_case(&text);
+        for (k, (_, t)) in case.files.iter().enumerate() {
+            let cuts: Vec<usize> = (0..t.len())
+                .step_by(5)
+                .filter(|&i| t.is_char_boundary(i))
+                .collect();
+            for &at in &cuts {
+                let end = t[at..]
+                    .find(char::is_whitespace)
+                    .map_or(t.len(), |e| at + e);
+                for mutated in [format!("{}{}", &t[..at], &t[end..]), t[..at].to_string()] {
+                    let mut map = SourceMap::new();
+                    for (j, (name, orig)) in case.files.iter().enumerate() {
+                        map.add(
+                            name.clone(),
+                            if j == k {
+                                mutated.clone()
+                            } else {
+                                orig.clone()
+                            },
+                        );
+                    }
+                    automat_vendor::add_libraries(&mut map, &[Dialect::Fst]);
+                    let mut interner = Interner::new();
+                    let (units, analysis) =
+                        automat_vendor::check_sources(&map, &mut interner, &[Dialect::Fst]);
+                    // The generated ST never fails to check: STL errors
+                    // are caught in the STL files.
+                    let generated: Vec<_> = analysis
+                        .diagnostics
+                        .iter()
+                        .filter(|d| map.get(d.span.file).name.starts_with("<fst>"))
+                        .collect();
+                    assert!(
+                        generated.is_empty(),
+                        "{}: {mutated:?}\n{}",
+                        c.display(),
+                        automat_base::render::render_report(&map, &analysis.diagnostics)
+                    );
+                    // An STL project that checks clean also lowers.
+                    if !analysis.has_errors() {
+                        let opts = LowerOptions { program: None };
+                        if let Err(d) = lower(&units, &analysis, &interner, &map, &opts) {
+                            panic!(
+                                "{}: {}",
+                                c.display(),
+                                automat_base::render::render_report(&map, &d)
+                            );
+                        }
+                    }
+                    tried += 1;
+                }
+            }
+        }
+    }
+    assert!(tried > 1000, "{tried}");
 }

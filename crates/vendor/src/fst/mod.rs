@@ -120,6 +120,7 @@ fn allocation(file: FileId, text: &str, diags: &mut Vec<Diagnostic>) -> Symbols 
         } else if parse::is_keyword(&up) || matches!(up.as_str(), "SBA" | "MBA" | "FST") {
             Some("a symbol cannot be a keyword or an accumulator")
         } else if operand::parse(&up).is_some()
+            || operand::parse(&format!("{up}.0")).is_some()
             || up.starts_with("__")
             || up.starts_with('V')
                 && up[1..].starts_with(|c: char| c.is_ascii_digit() || c == '$' || c == '%')

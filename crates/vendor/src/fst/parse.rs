@@ -148,6 +148,20 @@ impl<'a> Parser<'a> {
                     continue;
                 };
                 self.i += 1;
+                if !label
+                    .text
+                    .bytes()
+                    .all(|b| b.is_ascii_alphanumeric() || b == b'_')
+                {
+                    self.error(
+                        Code::E186,
+                        self.span(label),
+                        format!(
+                            "step `{}`: a step is named by letters, digits and `_`",
+                            label.text
+                        ),
+                    );
+                }
                 if seen.contains(&label.up) {
                     self.error(
                         Code::E186,
@@ -223,6 +237,15 @@ impl<'a> Parser<'a> {
                         }
                         c
                     });
+                    if cond.is_none() {
+                        // The condition's error is reported: go on at its THEN.
+                        while self
+                            .peek()
+                            .is_some_and(|t| !matches!(t.up.as_str(), "THEN" | "IF" | "STEP"))
+                        {
+                            self.i += 1;
+                        }
+                    }
                     if !self.at("THEN") {
                         self.error(Code::E186, self.here(), "THEN expected after the condition");
                         self.skip_to_sentence();
