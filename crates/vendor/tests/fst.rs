@@ -216,6 +216,21 @@ fn fst_cases() {
         }
     }
     assert!(bad.is_empty(), "{}", bad.join("\n\n"));
+    // Every FST code is announced by a case.
+    let all: String = cases
+        .iter()
+        .map(|c| std::fs::read_to_string(c).unwrap_or_default())
+        .collect();
+    for code in automat_base::Code::ALL
+        .iter()
+        .filter(|c| c.as_str().starts_with("E18"))
+    {
+        assert!(
+            all.contains(&format!(": {}", code.as_str())),
+            "no case expects {}",
+            code.as_str()
+        );
+    }
 }
 
 /// Bad input never panics: every case's STL files with one word deleted,
