@@ -252,6 +252,26 @@ codes! {
         "A `name`, `typeName`, `instanceName`, `label` or a variable of a contact or coil is not an IEC 61131-3 identifier (letters, digits and underscores, not starting with a digit).";
     E178 => "not expressible in PLCopen XML",
         "`automat export` met a construct TC6 XML has no place for: a VAR_GLOBAL outside a CONFIGURATION, VAR_ACCESS or VAR_CONFIG, connections of a program instance, an `ARRAY [*]`, an R_EDGE/F_EDGE input, a vendor dialect. Move it into a form the format has (globals into a configuration) or leave the project in ST.";
+    E180 => "invalid operand",
+        "Festo FST dialect: the operand cannot be written by this instruction: inputs (`In.m`, `IWn`) are read-only (FST's \"invalid operand, I0.0\"), SET/RESET/SHIFT take a bit operand, INC/DEC a word, and a LOAD's destinations must have the type of what it loaded.";
+    E181 => "SET or RESET missing",
+        "Festo FST dialect: a THEN or OTHRW part names a bit operand without an instruction; write `SET x` or `RESET x`.";
+    E182 => "unknown symbol",
+        "Festo FST dialect: a word is neither an operand (`I0.1`, `TP3`, ...) nor a symbol of the allocation list `allocation.txt`.";
+    E183 => "operand out of range",
+        "Festo FST dialect: an operand's number or bit, a constant or a module number is outside its range (I/O words 0-31, bits 0-15, flags, timers, counters, registers and function units 0-255, programs 0-63, modules 0-99, constants -32768 to 65535).";
+    E184 => "invalid allocation list entry",
+        "Festo FST dialect: an `allocation.txt` line is `OPERAND SYMBOL [comment]`; a symbol has at most 9 letters, digits or `_`, does not start with a digit, is not a keyword, not spelled like an operand, and is defined once.";
+    E185 => "IF in an executive program",
+        "Festo FST dialect: an executive program (one that does not start with STEP, IF or THEN) is a plain list of instructions, all executed; it has no IF.";
+    E186 => "STL syntax error",
+        "Festo FST dialect: the statement list does not follow FST's form: steps begin with `STEP name`, sentences with `IF condition THEN ...` (only the first sentence of a step or program may be incomplete, `THEN ...`), LOAD needs TO, JMP TO names a step of the program.";
+    E187 => "PSE not usable on the FEC",
+        "Festo FST dialect: PSE (program section end) is not available on the FEC controller; end a step with its last sentence or JMP TO.";
+    E188 => "invalid STL program or module",
+        "Festo FST dialect: an STL file is named P<n>.stl (n = 0-63) or B<n>.stl (n = 0-99) and a number is used once; P0 must exist; SET/RESET Pn and CMP n need that program or module; a module has no steps and does not call itself; CFM manufacturer modules are not available.";
+    E189 => "bit and word mixed",
+        "Festo FST dialect: an operation mixes a single-bit operand with a word, a condition is a word (compare it: `(CW1 = V5)`), N is applied to a word (use INV), or an accumulator operation (SHL, INV, ...) follows a bit.";
 
     // ---- projects, plants and scenarios (automat-project, automat-scenario) ----
     E300 => "invalid project file",

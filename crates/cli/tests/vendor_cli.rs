@@ -35,7 +35,7 @@ fn check_needs_the_dialect_and_refuses_unknown_ones() {
     assert_eq!(bad.status.code(), Some(2));
     assert_eq!(
         String::from_utf8_lossy(&bad.stderr),
-        "error: --lib: unknown library `codesys` (known: isagraf, pl7)\n"
+        "error: --lib: unknown library `codesys` (known: isagraf, pl7, fst)\n"
     );
 }
 

@@ -225,8 +225,12 @@ fn is_generated_only_code(code: Code) -> bool {
 
 /// E150–E169: diagnostics of the vendor dialects, which need `--lib`;
 /// `crates/vendor/tests/corpus.rs` covers them.
+/// E15x/E16x: `crates/vendor/tests/corpus.rs`; E18x (Festo STL):
+/// `crates/vendor/tests/fst.rs`.
 fn is_vendor_code(code: Code) -> bool {
-    code.as_str().starts_with("E15") || code.as_str().starts_with("E16")
+    ["E15", "E16", "E18"]
+        .iter()
+        .any(|p| code.as_str().starts_with(p))
 }
 
 /// E170–E179: diagnostics of the PLCopen XML importer, whose inputs are XML

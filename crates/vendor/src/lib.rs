@@ -36,6 +36,7 @@ mod boolact;
 mod build;
 mod children;
 mod empty;
+mod fst;
 mod pl7;
 mod pragma;
 mod sections;
@@ -54,10 +55,13 @@ pub enum Dialect {
     Isagraf,
     /// PL7: `%Xi` steps, `%S`/`%SW` system objects, P1/N1/P0 sections.
     Pl7,
+    /// Festo FST statement list: `P<n>.stl` programs, `B<n>.stl` modules,
+    /// `allocation.txt` (module `fst`).
+    Fst,
 }
 
 impl Dialect {
-    pub const ALL: &'static [Dialect] = &[Dialect::Isagraf, Dialect::Pl7];
+    pub const ALL: &'static [Dialect] = &[Dialect::Isagraf, Dialect::Pl7, Dialect::Fst];
 
     /// The dialect a `--lib` / `libraries` name selects (any case).
     pub fn from_name(name: &str) -> Option<Dialect> {
@@ -72,6 +76,7 @@ impl Dialect {
         match self {
             Dialect::Isagraf => "isagraf",
             Dialect::Pl7 => "pl7",
+            Dialect::Fst => "fst",
         }
     }
 
@@ -80,7 +85,7 @@ impl Dialect {
     pub fn library_file(self) -> Option<&'static str> {
         match self {
             Dialect::Isagraf => Some("<library isagraf>/isagraf.st"),
-            Dialect::Pl7 => None,
+            Dialect::Pl7 | Dialect::Fst => None,
         }
     }
 
@@ -88,9 +93,15 @@ impl Dialect {
     pub fn library_source(self) -> Option<&'static str> {
         match self {
             Dialect::Isagraf => Some(include_str!("../lib/isagraf.st")),
-            Dialect::Pl7 => None,
+            Dialect::Pl7 | Dialect::Fst => None,
         }
     }
+}
+
+/// Is `name` a file the FST dialect reads itself (`*.stl`,
+/// `allocation.txt`) rather than a Structured Text source?
+pub fn is_fst_file(name: &str) -> bool {
+    fst::is_fst_file(name)
 }
 
 /// Parses a list of dialect names (`--lib a --lib b`, `libraries = [...]`).
@@ -114,8 +125,15 @@ pub fn parse_names<S: AsRef<str>>(names: &[S]) -> Result<Vec<Dialect>, String> {
 }
 
 /// Adds the library source file of every dialect to the project (after the
-/// user's files, so their diagnostics come first).
+/// user's files, so their diagnostics come first). With FST, the ST
+/// generated from the project's STL files (when they have no error: their
+/// diagnostics come from [`check_sources`]).
 pub fn add_libraries(map: &mut SourceMap, dialects: &[Dialect]) {
+    if dialects.contains(&Dialect::Fst) {
+        if let (Some(text), _) = fst::translate(map) {
+            map.add(fst::GENERATED, text);
+        }
+    }
     for d in dialects {
         if let (Some(name), Some(text)) = (d.library_file(), d.library_source()) {
             map.add(name, text);
@@ -146,7 +164,18 @@ pub fn check_sources(
     let pl7 = dialects.contains(&Dialect::Pl7);
     let isagraf = dialects.contains(&Dialect::Isagraf);
     let mut negated = Vec::new();
+    let fst = dialects.contains(&Dialect::Fst);
+    if fst {
+        diags.extend(fst::translate(sources).1);
+    }
     for (id, file) in sources.files() {
+        if fst && fst::is_fst_file(&file.name) {
+            units.push(SourceUnit {
+                file: id,
+                items: Vec::new(),
+            });
+            continue;
+        }
         let lib = dialects
             .iter()
             .any(|d| d.library_file() == Some(file.name.as_str()));

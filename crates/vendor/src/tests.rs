@@ -19,7 +19,7 @@ fn names_parse_in_any_case_once_each() {
         Ok(vec![Dialect::Isagraf, Dialect::Pl7])
     );
     let err = parse_names(&["codesys"]).unwrap_err();
-    assert_eq!(err, "unknown library `codesys` (known: isagraf, pl7)");
+    assert_eq!(err, "unknown library `codesys` (known: isagraf, pl7, fst)");
 }
 
 #[test]
