@@ -120,10 +120,12 @@ impl Runner {
                 eprintln!("{w}");
             }
             match build::compile(&p.sources, p.program.clone(), &p.libraries) {
-                Ok((mut prog, _warnings)) => match automat_project::tasks::apply(&p.tasks, &mut prog) {
-                    Ok(()) => Ok((p, prog)),
-                    Err(d) => Err(render::render_report(map, &d)),
-                },
+                Ok((mut prog, _warnings)) => {
+                    match automat_project::tasks::apply(&p.tasks, &mut prog) {
+                        Ok(()) => Ok((p, prog)),
+                        Err(d) => Err(render::render_report(map, &d)),
+                    }
+                }
                 Err(e) => Err(e.text),
             }
         })
