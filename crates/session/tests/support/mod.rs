@@ -21,6 +21,8 @@ pub fn config() -> Config {
         monotonic: Box::new(SystemClock::new()),
         running: false,
         stop: Arc::new(AtomicBool::new(false)),
+        retain: None,
+        safe: None,
     }
 }
 
