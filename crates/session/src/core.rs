@@ -332,6 +332,11 @@ impl Core {
                 }
             }
             self.forces.borrow().apply(image);
+            if !matches!(self.state, State::Fault { .. }) {
+                // Writes and forces between scans are consistent states
+                // too; a faulted scan's half-done values never are.
+                self.retained_from(image);
+            }
             self.publish(image);
             if first && scanned {
                 self.feed();
