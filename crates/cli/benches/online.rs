@@ -94,6 +94,8 @@ fn main() {
         monotonic: Box::new(SystemClock::new()),
         running: true,
         stop: Arc::new(AtomicBool::new(false)),
+        retain: None,
+        safe: None,
     };
     let session = Arc::new(
         Session::start(

@@ -4,26 +4,34 @@
 //! the live view's console and the server both drive. Source files run
 //! alone; a project folder runs with its plant and its `[users]`.
 //!
+//! The rules of every real-time run hold (the session applies them): the
+//! RETAIN path checked before the start (exit 2 unless optional), a warm
+//! start, saves from end-of-scan snapshots every `--retain-every` and at
+//! the end (also after a fault), the watchdog of every task, the safe state
+//! (the project's, with its plant's actuators and `[safe_state]`) on a
+//! fault and on a stop, and Ctrl-C/SIGTERM/SIGHUP as the scan loop's stop
+//! flag (a scan still running a second later is stopped as a fault).
+//!
 //! Options that do not apply are refused, never ignored: with `--listen`,
 //! `--cycles`, `--duration`, `--scenario` and `--trace` (the run is driven
 //! online). `--speed` is honoured for source files too.
 
-use crate::cmd_run::RunArgs;
+use crate::cmd_run::{safe_note_of, stop_on_signals, RunArgs};
 use crate::live::{Console, Live, ScaledClock};
+use crate::retain_run::{self, RetainCfg};
 use crate::Outcome;
 use automat_base::{render, SourceMap};
 use automat_ir::Program;
 use automat_online::{Options, Role, User};
 use automat_project::{bind, build, Sim};
-use automat_runtime::retain::{self, Loaded};
-use automat_runtime::ClockMode;
 use automat_runtime::ScanObserver;
-use automat_session::{Config, Parts, Session, State};
+use automat_runtime::{ClockMode, SafeState};
+use automat_session::{Config, Parts, RetainFile, Session};
 use std::cell::RefCell;
 use std::io::IsTerminal;
 use std::path::Path;
 use std::rc::Rc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::sync::{Arc, Mutex};
 
 /// Whether `automat run` goes online: with `--listen`, or a real-time run
@@ -59,10 +67,11 @@ fn bad(msg: impl std::fmt::Display) -> Outcome {
     Outcome::BadInput
 }
 
-/// The program, its cyclic period and the users of a project folder.
+/// The program, its cyclic period, its safe state and the project folder.
 struct LoadedRun {
     program: Program,
     cycle_ns: i64,
+    safe: SafeState,
     project: Option<automat_project::Project>,
 }
 
@@ -72,8 +81,11 @@ fn load(args: &RunArgs) -> Result<LoadedRun, Outcome> {
             return load_project(args, &toml);
         }
     }
+    let mut program = crate::cmd_run::compile(args)?;
+    crate::engines::default_watchdog(&mut program, args.watchdog);
     Ok(LoadedRun {
-        program: crate::cmd_run::compile(args)?,
+        safe: SafeState::of_program(&program),
+        program,
         cycle_ns: args.cycle_time.unwrap_or(10_000_000),
         project: None,
     })
@@ -88,7 +100,7 @@ fn load_project(args: &RunArgs, toml: &Path) -> Result<LoadedRun, Outcome> {
     let mut libraries = project.libraries.clone();
     libraries.extend(args.libs.iter().cloned());
     let name = args.program.clone().or(project.program.clone());
-    let program = match build::compile(&project.sources, name, &libraries) {
+    let mut program = match build::compile(&project.sources, name, &libraries) {
         Ok((p, warnings)) => {
             eprint!("{warnings}");
             p
@@ -102,17 +114,33 @@ fn load_project(args: &RunArgs, toml: &Path) -> Result<LoadedRun, Outcome> {
             });
         }
     };
-    // The bindings are checked here, where their diagnostics can be shown.
-    if let (Some(spec), Ok(Some(plant))) = (&project.plant, project.new_plant()) {
-        let (bindings, diags) = bind(spec, plant.as_ref(), &program);
-        if !diags.is_empty() {
-            eprint!("{}", render::render_report(&map, &diags));
+    let fail = |d: &[automat_base::Diagnostic]| {
+        eprint!("{}", render::render_report(&map, d));
+        Outcome::ProgramErrors
+    };
+    automat_project::tasks::apply(&project.tasks, &mut program).map_err(|d| fail(&d))?;
+    crate::engines::default_watchdog(&mut program, args.watchdog);
+    // The bindings are checked here, where their diagnostics can be shown;
+    // the safe state includes every variable an actuator is bound to.
+    let plant = project.new_plant().map_err(|d| fail(&d))?;
+    let safe = match (&project.plant, plant) {
+        (Some(spec), Some(plant)) => {
+            let (bindings, diags) = bind(spec, plant.as_ref(), &program);
+            if !diags.is_empty() {
+                eprint!("{}", render::render_report(&map, &diags));
+            }
+            let bindings = bindings.ok_or(Outcome::ProgramErrors)?;
+            automat_project::safe::build(
+                &project,
+                &program,
+                Some((plant.as_ref(), bindings.as_slice())),
+            )
         }
-        if bindings.is_none() {
-            return Err(Outcome::ProgramErrors);
-        }
+        _ => automat_project::safe::build(&project, &program, None),
     }
+    .map_err(|d| fail(&d))?;
     Ok(LoadedRun {
+        safe,
         cycle_ns: args.cycle_time.unwrap_or(project.cycle_time_ns),
         program,
         project: Some(project),
@@ -188,11 +216,12 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
     let (to_view, view_commands) = std::sync::mpsc::channel::<String>();
     let has_plant = loaded.project.as_ref().is_some_and(|p| p.plant.is_some());
 
+    // The RETAIN path is checked before anything starts (the live view,
+    // the server).
+    let retain = RetainCfg::of(args, loaded.project.as_ref().map(|p| &p.retain));
+    retain_run::check(&loaded.program, retain.as_ref())?;
     let stop = Arc::new(AtomicBool::new(false));
-    let flag = Arc::clone(&stop);
-    if let Err(e) = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed)) {
-        eprintln!("warning: cannot handle Ctrl-C ({e}); stop the PLC with a signal");
-    }
+    stop_on_signals(&stop);
     let virtual_clock = args.virtual_clock;
     let config = Config {
         cycle_time_ns: loaded.cycle_ns,
@@ -204,24 +233,31 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         monotonic: Box::new(ScaledClock::new(args.speed)),
         running: !virtual_clock,
         stop: Arc::clone(&stop),
+        retain: retain.as_ref().map(|r| RetainFile {
+            path: r.path.clone(),
+            every_ns: r.every_ns,
+        }),
+        safe: Some(loaded.safe.clone()),
     };
+    let safe = loaded.safe;
     let program = Arc::new(loaded.program);
     let for_build = (*program).clone();
     let engine_kind = args.engine;
-    let retain_file = (!args.cold).then(|| args.retain.clone()).flatten();
+    let warm_from = retain.as_ref().map(|r| RetainCfg {
+        path: r.path.clone(),
+        every_ns: r.every_ns,
+        optional: r.optional,
+    });
+    let cold = args.cold;
+    let budget = args.max_instructions;
     let project = loaded.project;
     let view_console = Arc::clone(&console);
     let view_stop = Arc::clone(&stop);
     let speed = args.speed;
     let build = Box::new(move || -> Result<Parts, String> {
         let mut engine = crate::engines::build(for_build.clone(), engine_kind);
-        if let Some(path) = &retain_file {
-            let p = automat_runtime::Executor::program(&engine).clone();
-            match retain::load(&p, path, automat_runtime::Executor::image_mut(&mut engine)) {
-                Loaded::Warm | Loaded::NoFile => {}
-                Loaded::Cold(why) => eprintln!("warning: {}: {why}; cold start", path.display()),
-            }
-        }
+        engine.set_budget(budget);
+        retain_run::warm(&mut engine, warm_from.as_ref(), cold);
         let sim = match project
             .as_ref()
             .and_then(|p| p.plant.clone().map(|s| (p, s)))
@@ -279,12 +315,17 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             has_plant,
         );
     }
-    let end = session.join().map_err(bad)?;
+    let mut end = session.join().map_err(bad)?;
     drop(server);
     let mut outcome = Outcome::Ok;
-    if let Some(path) = &args.retain {
-        if let Err(e) = retain::save(&program, path, &end.image) {
-            eprintln!("error: {e}");
+    if let Some(saves) = end.retain.take() {
+        let saved = retain_run::report(
+            saves.last,
+            saves.failures,
+            saves.last_error.as_deref(),
+            retain.as_ref(),
+        );
+        if !saved {
             outcome = Outcome::BadInput;
         }
     }
@@ -297,10 +338,11 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
     if let Some(e) = &end.error {
         return Err(bad(e));
     }
-    if let State::Fault { message, site } = &end.snapshot.state {
-        eprintln!("error: runtime fault: {site}: {message}");
-        eprintln!("note: the PLC stopped; every output was set to 0/FALSE");
+    if let Some(f) = &end.fault {
+        eprintln!("error: runtime fault: {f}");
+        safe_note_of(true, &safe);
         return Ok(Outcome::Fault);
     }
+    safe_note_of(false, &safe);
     Ok(outcome)
 }

@@ -273,15 +273,24 @@ pub(crate) fn stop_on_signals(stop: &Arc<AtomicBool>) {
 /// The note after a stop in the safe state.
 pub(crate) fn safe_note(end: &RunEnd, safe: &SafeState) {
     match end {
-        RunEnd::Fault(_) => eprintln!(
+        RunEnd::Fault(_) => safe_note_of(true, safe),
+        RunEnd::Stopped => safe_note_of(false, safe),
+        _ => {}
+    }
+}
+
+/// The note of a run that ended in the safe state, on a fault or not.
+pub(crate) fn safe_note_of(fault: bool, safe: &SafeState) {
+    if fault {
+        eprintln!(
             "note: the PLC stopped in its safe state: {}",
             safe.describe()
-        ),
-        RunEnd::Stopped => eprintln!(
+        );
+    } else {
+        eprintln!(
             "note: stopped at the end of a scan, in the safe state: {}",
             safe.describe()
-        ),
-        _ => {}
+        );
     }
 }
 

@@ -5,6 +5,7 @@
 
 use crate::cmd_run::RunArgs;
 use crate::Outcome;
+use automat_ir::Program;
 use automat_runtime::retain::{self, Keeper, Loaded};
 use automat_runtime::Executor;
 use std::path::PathBuf;
@@ -50,11 +51,18 @@ pub(crate) fn start<E: Executor>(
     cfg: Option<&RetainCfg>,
     cold: bool,
 ) -> Result<(), Outcome> {
+    check(engine.program(), cfg)?;
+    warm(engine, cfg, cold);
+    Ok(())
+}
+
+/// The start-up check of the RETAIN path: an error (exit 2) unless
+/// optional. Done before anything starts (a session, the live view).
+pub(crate) fn check(program: &Program, cfg: Option<&RetainCfg>) -> Result<(), Outcome> {
     let Some(cfg) = cfg else {
         return Ok(());
     };
-    let program = engine.program().clone();
-    if let Err(e) = retain::check_path(&program, &cfg.path) {
+    if let Err(e) = retain::check_path(program, &cfg.path) {
         if !cfg.optional {
             eprintln!("error: RETAIN file {e}");
             eprintln!(
@@ -64,14 +72,23 @@ pub(crate) fn start<E: Executor>(
         }
         eprintln!("warning: RETAIN file {e}; running anyway (--retain-optional)");
     }
+    Ok(())
+}
+
+/// The warm start: the file loaded into the image unless `cold` (a file
+/// that does not fit is a warning and a cold start).
+pub(crate) fn warm<E: Executor>(engine: &mut E, cfg: Option<&RetainCfg>, cold: bool) {
+    let Some(cfg) = cfg else {
+        return;
+    };
     if cold {
-        return Ok(());
+        return;
     }
+    let program = engine.program().clone();
     match retain::load(&program, &cfg.path, engine.image_mut()) {
         Loaded::Warm | Loaded::NoFile => {}
         Loaded::Cold(why) => eprintln!("warning: {}: {why}; cold start", cfg.path.display()),
     }
-    Ok(())
 }
 
 /// After the run: the last consistent snapshot saved, and any failed
@@ -79,11 +96,19 @@ pub(crate) fn start<E: Executor>(
 /// `optional`, that is a warning and `true`).
 pub(crate) fn finish(k: &mut Keeper, cfg: Option<&RetainCfg>) -> bool {
     let last = k.finish();
-    if let Some(e) = &k.last_error {
-        eprintln!(
-            "warning: {} periodic RETAIN save(s) failed; the last: {e}",
-            k.failures
-        );
+    report(last, k.failures, k.last_error.as_deref(), cfg)
+}
+
+/// The messages of the saves of a run: `last` the final save, `failures`
+/// periodic saves that failed (`last_error` the last one's message).
+pub(crate) fn report(
+    last: Result<(), String>,
+    failures: u64,
+    last_error: Option<&str>,
+    cfg: Option<&RetainCfg>,
+) -> bool {
+    if let Some(e) = last_error {
+        eprintln!("warning: {failures} periodic RETAIN save(s) failed; the last: {e}");
     }
     match last {
         Ok(()) => true,

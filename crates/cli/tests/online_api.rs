@@ -302,3 +302,51 @@ fn https_and_wss_with_a_certificate() {
     client_with("tls", &plc, &[&cert_s]);
     interrupt(plc);
 }
+
+/// A project served online keeps its `[retain]` file (periodic saves from
+/// the session's keeper) and stops on SIGTERM in its safe state, with the
+/// note every run gives: exit 0.
+#[test]
+fn a_served_project_saves_retain_and_stops_in_its_safe_state_on_sigterm() {
+    let dir = project("retain-safe");
+    let file = dir.join("plc.retain");
+    let mut toml = std::fs::read_to_string(dir.join("automat.toml")).expect("toml");
+    toml.push_str("\n[retain]\nfile = \"plc.retain\"\nsave_every = \"20ms\"\n");
+    std::fs::write(dir.join("automat.toml"), toml).expect("toml");
+    let child = Command::new(bin())
+        .arg("run")
+        .arg(&dir)
+        .args(["--listen", "0", "--token-file"])
+        .arg(dir.join("token"))
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("automat run --listen");
+    // The first periodic save shows the PLC runs, however loaded the machine.
+    let deadline = std::time::Instant::now() + Duration::from_secs(60);
+    while !file.exists() {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "no RETAIN save in 60 s"
+        );
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let sent = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status();
+    assert!(sent.is_ok_and(|s| s.success()), "kill -TERM");
+    let out = child.wait_with_output().expect("wait");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    // The project's safe state: the %Q area and the actuator-bound outputs.
+    assert_eq!(
+        stderr.lines().last(),
+        Some(
+            "note: stopped at the end of a scan, in the safe state: the %Q area (4 bytes) and \
+             4 outputs (%QX3.1, M1D, M2S, M2J) set to 0/FALSE"
+        ),
+        "{stderr}"
+    );
+    assert!(std::fs::metadata(&file).is_ok_and(|m| m.len() > 0));
+}

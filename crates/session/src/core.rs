@@ -4,19 +4,29 @@
 //! the forces, publishes the snapshot, feeds the subscriptions due and
 //! answers the commands; while stopped it waits there, its waiting time
 //! left out of the run's clock so PLC time and the plant stand still.
+//!
+//! The scan loop is `run_safe` with the session's safe state and the
+//! outside stop flag, so a fault, a signal and the end of the session all
+//! leave the outputs safe and a long scan is stopped as a fault a second
+//! after a stop request. RETAIN is kept by a [`Keeper`] that sees every
+//! completed scan (and the image after a restart, a consistent state too).
 
 use crate::force::{Boxed, ForceTable, Forcing, Shifted};
 use crate::{
-    Command, Config, Control, CycleStats, Error, Final, Parts, Request, Shared, Sink, Snapshot,
-    State,
+    Command, Config, Control, CycleStats, Error, Final, Parts, Request, RetainSaves, Shared, Sink,
+    Snapshot, State,
 };
 use automat_ir::Program;
-use automat_project::PlantExec;
+use automat_project::{PlantExec, Sim};
 use automat_runtime::io::NoIo;
+use automat_runtime::retain::Keeper;
 use automat_runtime::scan::Env;
 use automat_runtime::stats::Stats;
-use automat_runtime::{run, Executor, Limit, Monotonic, RunConfig, RunEnd, ScanObserver};
+use automat_runtime::{
+    run_safe, ClockMode, Executor, Limit, Monotonic, RunConfig, RunEnd, SafeState, ScanObserver,
+};
 use std::cell::{Cell, RefCell};
+use std::ops::Range;
 use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, TryRecvError};
@@ -99,6 +109,19 @@ struct Core {
     restart: Option<()>,
     /// Replies to send once the snapshot shows the commands' effect.
     answers: Vec<(Reply, Result<(), Error>)>,
+    /// Saves the RETAIN file from end-of-scan snapshots (passes scans on
+    /// to nothing: the caller's observer is `extra`).
+    keeper: Keeper<'static>,
+    /// The RETAIN ranges of the image, and their bytes at the end of the
+    /// last completed scan (or restart): what a warm restart keeps, never
+    /// the half-done values of a faulted scan.
+    retain_ranges: Vec<Range<usize>>,
+    retained: Vec<u8>,
+    /// Applied on a `stop` command (a PLC STOP).
+    safe: SafeState,
+    sim: Option<Rc<RefCell<Sim>>>,
+    /// The last fault, as the runtime reports it.
+    fault: Option<String>,
 }
 
 impl Core {
@@ -209,16 +232,26 @@ impl Core {
             Control::Start => {
                 self.steps = None;
                 self.state = State::Running;
+                self.resume_plant();
                 Ok(())
             }
             Control::Stop => {
                 self.steps = None;
+                if !fault {
+                    // A PLC in STOP holds its outputs in the safe state, and
+                    // the plant's actuators follow (in fault they already do).
+                    self.safe.apply(image);
+                    if let Some(s) = &self.sim {
+                        s.borrow_mut().safe_state(image);
+                    }
+                }
                 self.state = State::Stopped;
                 Ok(())
             }
             Control::Step(0) => Ok(()),
             Control::Step(n) => {
                 self.state = State::Running;
+                self.resume_plant();
                 // Answered when the scans have run.
                 if let Some((_, earlier)) = self.steps.replace((n, reply)) {
                     let _ = earlier.send(Err(Error::Refused(
@@ -228,8 +261,14 @@ impl Core {
                 return;
             }
             Control::ColdRestart | Control::WarmRestart => {
-                restart_image(&self.program, image, c == Control::WarmRestart);
+                let kept = (c == Control::WarmRestart)
+                    .then_some((self.retain_ranges.as_slice(), self.retained.as_slice()));
+                restart_image(&self.program, image, kept);
                 self.forces.borrow().apply(image);
+                // The restarted image is consistent: RETAIN keeps it until
+                // the next scan ends (a cold restart's zeros included).
+                self.retained_from(image);
+                let _ = self.keeper.after_scan(self.plc_time_ns, image);
                 if !in_scan_loop {
                     // Out of the scan loop (in fault): it starts again.
                     self.restart = Some(());
@@ -241,6 +280,28 @@ impl Core {
             }
         };
         self.answers.push((reply, answer));
+    }
+
+    /// The plant's actuators follow the image again (after a STOP).
+    fn resume_plant(&self) {
+        if let Some(s) = &self.sim {
+            if s.borrow().halted() {
+                s.borrow_mut().resume();
+            }
+        }
+    }
+
+    fn retained_from(&mut self, image: &[u8]) {
+        let mut at = 0;
+        for r in &self.retain_ranges {
+            if let (Some(src), Some(dst)) = (
+                image.get(r.clone()),
+                self.retained.get_mut(at..at + r.len()),
+            ) {
+                dst.copy_from_slice(src);
+            }
+            at += r.len();
+        }
     }
 
     /// Between scans (or while in fault): commands, snapshot, waiting.
@@ -271,6 +332,11 @@ impl Core {
                 }
             }
             self.forces.borrow().apply(image);
+            if !matches!(self.state, State::Fault { .. }) {
+                // Writes and forces between scans are consistent states
+                // too; a faulted scan's half-done values never are.
+                self.retained_from(image);
+            }
             self.publish(image);
             if first && scanned {
                 self.feed();
@@ -300,30 +366,34 @@ impl Core {
     }
 }
 
-/// The cold-start image, RETAIN ranges kept from `image` when `warm`.
-fn restart_image(program: &Program, image: &mut [u8], warm: bool) {
-    let kept: Vec<(usize, Vec<u8>)> = if warm {
-        program
-            .retain
-            .iter()
-            .filter_map(|r| {
-                let (s, e) = (r.start as usize, r.end as usize);
-                image.get(s..e).map(|b| (s, b.to_vec()))
-            })
-            .collect()
-    } else {
-        Vec::new()
-    };
+/// The cold-start image; with `kept` (a warm restart) the RETAIN ranges
+/// get the bytes kept for them (one after another, as
+/// [`Core::retained`] holds them).
+fn restart_image(program: &Program, image: &mut [u8], kept: Option<(&[Range<usize>], &[u8])>) {
     image.fill(0);
     let n = program.initial_image.len().min(image.len());
     if let (Some(dst), Some(src)) = (image.get_mut(..n), program.initial_image.get(..n)) {
         dst.copy_from_slice(src);
     }
-    for (s, bytes) in kept {
-        if let Some(dst) = image.get_mut(s..s + bytes.len()) {
-            dst.copy_from_slice(&bytes);
+    let Some((ranges, bytes)) = kept else {
+        return;
+    };
+    let mut at = 0;
+    for r in ranges {
+        if let (Some(dst), Some(src)) = (image.get_mut(r.clone()), bytes.get(at..at + r.len())) {
+            dst.copy_from_slice(src);
         }
+        at += r.len();
     }
+}
+
+/// The RETAIN ranges of `program` as image ranges.
+fn retain_ranges(program: &Program) -> Vec<Range<usize>> {
+    program
+        .retain
+        .iter()
+        .filter_map(|r| Some(usize::try_from(r.start).ok()?..usize::try_from(r.end).ok()?))
+        .collect()
 }
 
 /// The observer the scan loop calls: the session's core and the caller's
@@ -337,6 +407,9 @@ impl ScanObserver for Observer<'_> {
         let c = &mut *self.core;
         c.plc_time_ns = plc_time_ns.saturating_add(c.offset.get());
         c.scans += 1;
+        // The end of a completed scan: the consistent state RETAIN keeps.
+        c.keeper.after_scan(c.plc_time_ns, image)?;
+        c.retained_from(image);
         match &mut c.extra {
             Some(o) => o.after_scan(c.plc_time_ns, image),
             None => Ok(()),
@@ -381,6 +454,8 @@ pub(crate) fn main(
                 image: Vec::new(),
                 snapshot: Arc::clone(&*shared.snapshot.lock().unwrap_or_else(|p| p.into_inner())),
                 error: Some(e),
+                fault: None,
+                retain: None,
             };
         }
     };
@@ -403,6 +478,38 @@ pub(crate) fn main(
         inner: Boxed(inner),
         offset: Rc::clone(&offset),
     };
+    let safe = config
+        .safe
+        .unwrap_or_else(|| SafeState::of_program(&program));
+    let start_image = exec.image().to_vec();
+    // The keeper passes scans on to nothing (a zero-sized value leaked
+    // costs nothing); the caller's observer is called by the session.
+    let nothing: &'static mut () = Box::leak(Box::new(()));
+    let mut keeper = Keeper::new(
+        &program,
+        &start_image,
+        config.retain.as_ref().map(|r| r.path.clone()),
+        config.retain.as_ref().and_then(|r| r.every_ns),
+        nothing,
+    );
+    if config.clock == ClockMode::RealTime {
+        // A scan never waits for the disk.
+        keeper = keeper.in_background();
+    }
+    let ranges = retain_ranges(&program);
+    let mut retained = vec![0; ranges.iter().map(|r| r.len()).sum()];
+    {
+        let mut at = 0;
+        for r in &ranges {
+            if let (Some(src), Some(dst)) = (
+                start_image.get(r.clone()),
+                retained.get_mut(at..at + r.len()),
+            ) {
+                dst.copy_from_slice(src);
+            }
+            at += r.len();
+        }
+    }
     let clock = ClockHandle(Rc::new(RefCell::new(PausedClock {
         inner: config.monotonic,
         paused_ns: 0,
@@ -431,14 +538,21 @@ pub(crate) fn main(
         quit: false,
         restart: None,
         answers: Vec::new(),
+        keeper,
+        retain_ranges: ranges,
+        retained,
+        safe: safe.clone(),
+        sim: sim.clone(),
+        fault: None,
     };
+    let has_retain = config.retain.is_some();
     let _ = ready.send(Ok(()));
     let cfg = RunConfig {
         cycle_time_ns: config.cycle_time_ns,
         clock: config.clock,
         limit: Limit::Unbounded,
     };
-    let never = AtomicBool::new(false);
+    let stop = Arc::clone(&config.stop);
     let mut error = None;
     loop {
         if core.restart.take().is_some() {
@@ -462,9 +576,9 @@ pub(crate) fn main(
                 inputs: &mut inputs,
                 outputs: &mut outputs,
                 observer: &mut observer,
-                stop: &never,
+                stop: &stop,
             };
-            run(&mut exec, &cfg, &mut env)
+            run_safe(&mut exec, &cfg, &mut env, &safe)
         };
         match report {
             Err(e) => {
@@ -481,6 +595,16 @@ pub(crate) fn main(
                         core.answers
                             .push((to, Err(Error::Refused(format!("runtime fault: {f}")))));
                     }
+                    core.fault = Some(format!(
+                        "{} (task {}, program instance {}, PLC time {})",
+                        f.fault,
+                        f.task,
+                        f.instance,
+                        automat_iec::format::format_duration(
+                            f.plc_time_ns.saturating_add(core.offset.get()),
+                            false
+                        )
+                    ));
                     core.state = State::Fault {
                         message: f.fault.message.clone(),
                         site: format!(
@@ -513,14 +637,28 @@ pub(crate) fn main(
                     error = Some(e);
                     break;
                 }
-                RunEnd::Stopped | RunEnd::Limit | RunEnd::TimeExhausted => break,
+                RunEnd::Stopped => {
+                    // The outputs are in the safe state: the plant is told.
+                    if let Some(s) = &sim {
+                        s.borrow_mut().safe_state(exec.image());
+                    }
+                    break;
+                }
+                RunEnd::Limit | RunEnd::TimeExhausted => break,
             },
         }
     }
-    finish(core, &exec, error)
+    finish(core, &exec, error, has_retain)
 }
 
-fn finish(mut core: Core, exec: &impl Executor, error: Option<String>) -> Final {
+fn finish(mut core: Core, exec: &impl Executor, error: Option<String>, has_retain: bool) -> Final {
+    // The last end-of-scan snapshot, after the writer thread is done.
+    let last = core.keeper.finish();
+    let retain = has_retain.then(|| RetainSaves {
+        last,
+        failures: core.keeper.failures,
+        last_error: core.keeper.last_error.take(),
+    });
     core.state = match core.state {
         State::Running => State::Stopped,
         s => s,
@@ -544,5 +682,9 @@ fn finish(mut core: Core, exec: &impl Executor, error: Option<String>) -> Final 
             .lock()
             .map_or_else(|p| Arc::clone(&p.into_inner()), |s| Arc::clone(&s)),
         error,
+        fault: matches!(core.state, State::Fault { .. })
+            .then(|| core.fault.take())
+            .flatten(),
+        retain,
     }
 }

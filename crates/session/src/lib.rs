@@ -17,11 +17,20 @@
 //! Paths and values are checked on the client's thread, so a bad one is an
 //! [`Error`] at once, with the message `automat run --print` gives.
 //!
-//! Run control: `stop` pauses between two scans (PLC time and the plant
-//! stand still: time stopped is left out of the run's clock), `start`
-//! resumes, `step N` runs N scans and pauses again, `cold_restart` and
-//! `warm_restart` re-initialise the image (warm keeps RETAIN variables)
-//! while PLC time goes on; they are also how a PLC in fault starts again.
+//! Run control: `stop` is a PLC STOP between two scans: every output goes
+//! to its safe state (the plant sees it) and PLC time and the plant stand
+//! still (time stopped is left out of the run's clock); `start` resumes,
+//! the program driving the outputs again; `step N` runs N scans and pauses
+//! again with the outputs as the scans left them (a debugging pause, not a
+//! STOP); `cold_restart` and `warm_restart` re-initialise the image (warm
+//! keeps the RETAIN variables of the last completed scan) while PLC time
+//! goes on; they are also how a PLC in fault starts again.
+//!
+//! The session owns RETAIN and the safe state as `automat run` always did:
+//! the RETAIN file is saved from end-of-scan snapshots (periodically and
+//! when the session ends, also after a fault), and the scan loop runs with
+//! the configured safe state, applied on a fault and when the session
+//! ends.
 
 mod core;
 pub mod force;
@@ -33,8 +42,9 @@ pub use symbols::Node;
 use automat_ir::Program;
 use automat_project::Sim;
 use automat_runtime::{resolve, resolve_access, value as show, ClockMode, Executor, Monotonic};
-use automat_runtime::{Place, ScanObserver};
+use automat_runtime::{Place, SafeState, ScanObserver};
 use std::cell::RefCell;
+use std::path::PathBuf;
 use std::rc::Rc;
 use std::sync::atomic::AtomicBool;
 use std::sync::mpsc::{channel, Receiver, Sender};
@@ -152,9 +162,36 @@ pub struct Config {
     pub monotonic: Box<dyn Monotonic + Send>,
     /// Start running at once (otherwise stopped, waiting for commands).
     pub running: bool,
-    /// Set from outside (Ctrl-C, SIGTERM) to end the session at the end of
-    /// the scan.
+    /// Set from outside (Ctrl-C, SIGTERM, SIGHUP) to end the session at
+    /// the end of the scan; it is the scan loop's stop flag too, so a scan
+    /// still running a second after it is stopped as a fault.
     pub stop: Arc<AtomicBool>,
+    /// The RETAIN file the session keeps (`None`: RETAIN variables are not
+    /// kept). The image the build returns is already warm- or cold-started.
+    pub retain: Option<RetainFile>,
+    /// The safe state of every output, applied on a fault, on a `stop`
+    /// command and when the session ends (`None`: the program's default,
+    /// [`SafeState::of_program`]).
+    pub safe: Option<SafeState>,
+}
+
+/// The RETAIN file of a session: saved from end-of-scan snapshots only
+/// (`automat_runtime::retain::Keeper`), every `every_ns` of PLC time while
+/// running (`None`: only when the session ends), and at the end.
+#[derive(Clone, Debug)]
+pub struct RetainFile {
+    pub path: PathBuf,
+    pub every_ns: Option<i64>,
+}
+
+/// The RETAIN saves of a session that kept a file.
+#[derive(Debug)]
+pub struct RetainSaves {
+    /// The final save (of the last end-of-scan snapshot).
+    pub last: Result<(), String>,
+    /// Periodic saves that failed, and the message of the last one.
+    pub failures: u64,
+    pub last_error: Option<String>,
 }
 
 /// How the session ended.
@@ -166,6 +203,11 @@ pub struct Final {
     /// Why the scan loop ended when not by a stop (a configuration error,
     /// the caller's observer).
     pub error: Option<String>,
+    /// The fault the session ended in, as the runtime reports it
+    /// (`file:line:col: fault in POU: message (task …, PLC time …)`).
+    pub fault: Option<String>,
+    /// The RETAIN saves (`None` without a RETAIN file).
+    pub retain: Option<RetainSaves>,
 }
 
 /// Values of watched paths after a scan, as `--print` shows them.

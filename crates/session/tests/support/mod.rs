@@ -21,11 +21,25 @@ pub fn config() -> Config {
         monotonic: Box::new(SystemClock::new()),
         running: false,
         stop: Arc::new(AtomicBool::new(false)),
+        retain: None,
+        safe: None,
     }
 }
 
 /// A session over one ST source text (no plant).
 pub fn source(text: &str) -> Session {
+    source_with(text, config())
+}
+
+/// A folder of its own for one test's files.
+pub fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("automat-session-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+/// [`source`] with the caller's configuration.
+pub fn source_with(text: &str, config: Config) -> Session {
     // One folder per call: tests run in parallel, several on one text.
     static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
@@ -38,7 +52,7 @@ pub fn source(text: &str) -> Session {
     let p = (*program).clone();
     Session::start(
         program,
-        config(),
+        config,
         Box::new(move || {
             Ok(Parts {
                 exec: Box::new(Engine::new(p)),
