@@ -234,34 +234,32 @@ fn literal(v: &Value) -> Result<String, Refusal> {
     }
 }
 
+/// The authorized `{"path", "value"}` body of `write` and `force`: the
+/// path and the value as IEC literal text, or the refusal to send.
+fn path_value(
+    app: &App,
+    headers: &HeaderMap,
+    body: &Bytes,
+    what: &str,
+) -> Result<(String, String), Response> {
+    authorize(app, headers, None, Role::Operator, what).map_err(IntoResponse::into_response)?;
+    let req: PathValue = parse(body).map_err(IntoResponse::into_response)?;
+    let value = literal(&req.value).map_err(IntoResponse::into_response)?;
+    Ok((req.path, value))
+}
+
 pub async fn write(Ax(app): Ax<App>, headers: HeaderMap, body: Bytes) -> Response {
-    if let Err(r) = authorize(&app, &headers, None, Role::Operator, "write") {
-        return r.into_response();
+    match path_value(&app, &headers, &body, "write") {
+        Ok((path, value)) => blocking(&app, move |s| s.write(&path, &value)).await,
+        Err(r) => r,
     }
-    let req: PathValue = match parse(&body) {
-        Ok(r) => r,
-        Err(r) => return r.into_response(),
-    };
-    let value = match literal(&req.value) {
-        Ok(v) => v,
-        Err(r) => return r.into_response(),
-    };
-    blocking(&app, move |s| s.write(&req.path, &value)).await
 }
 
 pub async fn force(Ax(app): Ax<App>, headers: HeaderMap, body: Bytes) -> Response {
-    if let Err(r) = authorize(&app, &headers, None, Role::Operator, "force") {
-        return r.into_response();
+    match path_value(&app, &headers, &body, "force") {
+        Ok((path, value)) => blocking(&app, move |s| s.force(&path, &value)).await,
+        Err(r) => r,
     }
-    let req: PathValue = match parse(&body) {
-        Ok(r) => r,
-        Err(r) => return r.into_response(),
-    };
-    let value = match literal(&req.value) {
-        Ok(v) => v,
-        Err(r) => return r.into_response(),
-    };
-    blocking(&app, move |s| s.force(&req.path, &value)).await
 }
 
 #[derive(Deserialize)]

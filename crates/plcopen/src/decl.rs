@@ -6,7 +6,9 @@ use crate::Imp;
 use automat_base::Code;
 use roxmltree::Node;
 
-/// Elementary type elements of TC6, and the ST name each stands for.
+/// Elementary type elements of TC6, and the ST name each stands for (the
+/// importer also takes the long names and LTIME/CHAR/WCHAR, which the 2.01
+/// schema lacks; see [`tc6_element`] for the other direction).
 const ELEMENTARY: &[(&str, &str)] = &[
     ("BOOL", "BOOL"),
     ("BYTE", "BYTE"),
@@ -33,6 +35,19 @@ const ELEMENTARY: &[(&str, &str)] = &[
     ("CHAR", "CHAR"),
     ("WCHAR", "WCHAR"),
 ];
+
+/// The names of [`ELEMENTARY`] that are no element of the TC6 2.01 schema.
+const NOT_IN_TC6_2_01: &[&str] = &["LTIME", "DATE_AND_TIME", "TIME_OF_DAY", "CHAR", "WCHAR"];
+
+/// The TC6 2.01 element for the elementary ST type `st_name` (any case;
+/// `DATE_AND_TIME` is `DT`), or `None` for a type the schema has no element
+/// for (written as `derived`, which [`ELEMENTARY`] reads back as the same name).
+pub(crate) fn tc6_element(st_name: &str) -> Option<&'static str> {
+    let (_, st) = ELEMENTARY
+        .iter()
+        .find(|(tag, _)| tag.eq_ignore_ascii_case(st_name))?;
+    (!NOT_IN_TC6_2_01.contains(st)).then_some(*st)
+}
 
 /// Variable sections of an interface and their ST keyword.
 pub const SECTIONS: &[(&str, &str)] = &[

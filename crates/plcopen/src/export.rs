@@ -13,33 +13,6 @@ use automat_base::{Code, Diagnostic, SourceMap, Span};
 use automat_syntax::ast::*;
 use std::fmt::Write;
 
-/// TC6 2.01 elementary type elements, by the ST name (upper case). The
-/// schema has no CHAR, WCHAR or LTIME element: those are written as
-/// `derived`, which the importer reads back as the same name.
-const ELEMENTARY: &[(&str, &str)] = &[
-    ("BOOL", "BOOL"),
-    ("BYTE", "BYTE"),
-    ("WORD", "WORD"),
-    ("DWORD", "DWORD"),
-    ("LWORD", "LWORD"),
-    ("SINT", "SINT"),
-    ("INT", "INT"),
-    ("DINT", "DINT"),
-    ("LINT", "LINT"),
-    ("USINT", "USINT"),
-    ("UINT", "UINT"),
-    ("UDINT", "UDINT"),
-    ("ULINT", "ULINT"),
-    ("REAL", "REAL"),
-    ("LREAL", "LREAL"),
-    ("TIME", "TIME"),
-    ("DATE", "DATE"),
-    ("DT", "DT"),
-    ("DATE_AND_TIME", "DT"),
-    ("TOD", "TOD"),
-    ("TIME_OF_DAY", "TOD"),
-];
-
 struct Ex<'a> {
     sources: &'a SourceMap,
     diags: Vec<Diagnostic>,
@@ -90,8 +63,8 @@ impl Ex<'_> {
         match t {
             TypeSpec::Named(i) => {
                 let n = self.text(i.span).to_string();
-                match ELEMENTARY.iter().find(|(s, _)| s.eq_ignore_ascii_case(&n)) {
-                    Some((_, tag)) => {
+                match crate::decl::tc6_element(&n) {
+                    Some(tag) => {
                         let _ = write!(o, "<{tag}/>");
                     }
                     None => {
