@@ -235,30 +235,30 @@ fn literal(v: &Value) -> Result<String, Refusal> {
 }
 
 /// The authorized `{"path", "value"}` body of `write` and `force`: the
-/// path and the value as IEC literal text, or the refusal to send.
+/// path and the value as IEC literal text, or the refusal.
 fn path_value(
     app: &App,
     headers: &HeaderMap,
     body: &Bytes,
     what: &str,
-) -> Result<(String, String), Response> {
-    authorize(app, headers, None, Role::Operator, what).map_err(IntoResponse::into_response)?;
-    let req: PathValue = parse(body).map_err(IntoResponse::into_response)?;
-    let value = literal(&req.value).map_err(IntoResponse::into_response)?;
+) -> Result<(String, String), Refusal> {
+    authorize(app, headers, None, Role::Operator, what)?;
+    let req: PathValue = parse(body)?;
+    let value = literal(&req.value)?;
     Ok((req.path, value))
 }
 
 pub async fn write(Ax(app): Ax<App>, headers: HeaderMap, body: Bytes) -> Response {
     match path_value(&app, &headers, &body, "write") {
         Ok((path, value)) => blocking(&app, move |s| s.write(&path, &value)).await,
-        Err(r) => r,
+        Err(r) => r.into_response(),
     }
 }
 
 pub async fn force(Ax(app): Ax<App>, headers: HeaderMap, body: Bytes) -> Response {
     match path_value(&app, &headers, &body, "force") {
         Ok((path, value)) => blocking(&app, move |s| s.force(&path, &value)).await,
-        Err(r) => r,
+        Err(r) => r.into_response(),
     }
 }
 
