@@ -11,7 +11,7 @@ fuzz_target!(|data: &[u8]| {
     let mut map = SourceMap::new();
     map.add("fuzz.xml", text.as_ref());
     let mut interner = Interner::new();
-    let (_, analysis) = automat_vendor::check_sources(&map, &mut interner, &[]);
+    let (_, analysis) = automat_dialect::check_sources(&map, &mut interner, &[]);
     for d in &analysis.diagnostics {
         assert!(d.span.start <= d.span.end && d.span.end as usize <= text.len());
     }

@@ -211,7 +211,7 @@ codes! {
     E131 => "step listed twice in a transition",
         "A step appears twice in one transition's FROM list or twice in its TO list.";
 
-    // ---- vendor dialects (automat-vendor: --lib isagraf / pl7) ----
+    // ---- vendor dialects (automat-dialect: --lib isagraf / pl7) ----
     E150 => "misplaced TIMER variable",
         "ISaGRAF dialect: a TIMER keeps counting between calls, so it must be a VAR, VAR_OUTPUT, VAR_GLOBAL or VAR_EXTERNAL of a PROGRAM or FUNCTION_BLOCK (or of a global variable list); not a FUNCTION variable, an input, an in-out, a VAR_TEMP, an array element or a structure member.";
     E151 => "TSTART/TSTOP without a TIMER",

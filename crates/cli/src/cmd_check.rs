@@ -93,7 +93,7 @@ pub fn run(args: &CheckArgs) -> Outcome {
         Ok(i) => i,
         Err(o) => return o,
     };
-    let dialects = match automat_vendor::parse_names(&inputs.libraries) {
+    let dialects = match automat_dialect::parse_names(&inputs.libraries) {
         Ok(d) => d,
         Err(e) => {
             eprintln!("error: --lib: {e}");
@@ -107,9 +107,9 @@ pub fn run(args: &CheckArgs) -> Outcome {
             return Outcome::BadInput;
         }
     };
-    automat_vendor::add_libraries(&mut map, &dialects);
+    automat_dialect::add_libraries(&mut map, &dialects);
     let mut interner = Interner::new();
-    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &dialects);
+    let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &dialects);
     // A clean program is lowered too, so check refuses what run would
     // refuse at compile time (E091 image too large, E092 recursion, ...).
     let lowered = if analysis.has_errors() {

@@ -66,7 +66,7 @@ pub fn run(args: &ExportArgs) -> Outcome {
         }
     };
     let mut interner = Interner::new();
-    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &[]);
+    let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &[]);
     if analysis.has_errors() {
         eprint!("{}", render::render_report(&map, &analysis.diagnostics));
         return Outcome::ProgramErrors;

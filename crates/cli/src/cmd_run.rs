@@ -187,7 +187,7 @@ pub(crate) fn split_trace(values: &[String]) -> Vec<String> {
 
 /// Parses, checks and lowers the project; diagnostics are printed to stderr.
 pub(crate) fn compile(args: &RunArgs) -> Result<Program, Outcome> {
-    let dialects = automat_vendor::parse_names(&args.libs).map_err(|e| {
+    let dialects = automat_dialect::parse_names(&args.libs).map_err(|e| {
         eprintln!("error: --lib: {e}");
         Outcome::BadInput
     })?;
@@ -197,9 +197,9 @@ pub(crate) fn compile(args: &RunArgs) -> Result<Program, Outcome> {
             eprintln!("error: {e}");
             Outcome::BadInput
         })?;
-    automat_vendor::add_libraries(&mut map, &dialects);
+    automat_dialect::add_libraries(&mut map, &dialects);
     let mut interner = Interner::new();
-    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &dialects);
+    let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &dialects);
     if !analysis.diagnostics.is_empty() {
         eprint!("{}", render::render_report(&map, &analysis.diagnostics));
     }

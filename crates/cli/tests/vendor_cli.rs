@@ -6,7 +6,7 @@ use std::process::{Command, Output};
 
 fn example(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../tests/vendor")
+        .join("../../tests/dialect")
         .join(name)
 }
 

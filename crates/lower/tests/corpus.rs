@@ -31,7 +31,7 @@ fn projects(dir: &str) -> Vec<(String, Vec<(String, String)>)> {
         )
     };
     for p in entries {
-        // Vendor-dialect projects need `--lib`: crates/vendor/tests/corpus.rs
+        // Vendor-dialect projects need `--lib`: crates/dialect/tests/corpus.rs
         // checks and lowers them.
         let name = p.file_name().map(|n| n.to_string_lossy().to_string());
         if name.is_some_and(|n| n.starts_with("isagraf_") || n.starts_with("pl7_")) {

@@ -22,7 +22,7 @@ fn check(text: &str) -> String {
     let mut map = SourceMap::new();
     map.add("t.xml", text);
     let mut interner = Interner::new();
-    let (_, analysis) = automat_vendor::check_sources(&map, &mut interner, &[]);
+    let (_, analysis) = automat_dialect::check_sources(&map, &mut interner, &[]);
     render::render_report(&map, &analysis.diagnostics)
 }
 
@@ -206,7 +206,7 @@ fn export_refuses_what_tc6_cannot_hold() {
     let mut map = SourceMap::new();
     map.add("g.st", "VAR_GLOBAL x : INT; END_VAR\nPROGRAM P VAR_EXTERNAL x : INT; END_VAR x := 1; END_PROGRAM\n");
     let mut interner = Interner::new();
-    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &[]);
+    let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &[]);
     assert!(!analysis.has_errors());
     let Err(d) = automat_plcopen::export(&units, &map, "g") else {
         panic!("exported a global outside a configuration");

@@ -79,7 +79,7 @@ fn case(text: &str) {
     let mut map = SourceMap::new();
     map.add("case.xml", text);
     let mut interner = Interner::new();
-    let (_, analysis) = automat_vendor::check_sources(&map, &mut interner, &[]);
+    let (_, analysis) = automat_dialect::check_sources(&map, &mut interner, &[]);
     for d in &analysis.diagnostics {
         assert!(
             d.span.start <= d.span.end && d.span.end as usize <= text.len(),

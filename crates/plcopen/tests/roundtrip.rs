@@ -98,7 +98,7 @@ fn export_then_import_keeps_behaviour() {
         let mut map = SourceMap::new();
         map.add(name.clone(), text.clone());
         let mut interner = Interner::new();
-        let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &[]);
+        let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &[]);
         assert!(!analysis.has_errors(), "{name} passed but does not check");
         let xml = match automat_plcopen::export(&units, &map, &name) {
             Ok(x) => x,

@@ -57,10 +57,10 @@ pub fn compile_map(
         bad_input: true,
     };
     let dialects =
-        automat_vendor::parse_names(libraries).map_err(|e| bad(format!("error: {e}\n")))?;
-    automat_vendor::add_libraries(&mut map, &dialects);
+        automat_dialect::parse_names(libraries).map_err(|e| bad(format!("error: {e}\n")))?;
+    automat_dialect::add_libraries(&mut map, &dialects);
     let mut interner = Interner::new();
-    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &dialects);
+    let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &dialects);
     let warnings = render::render_report(&map, &analysis.diagnostics);
     if analysis.has_errors() {
         return Err(BuildError {

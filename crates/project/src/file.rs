@@ -509,7 +509,7 @@ fn is_st(p: &Path) -> bool {
         .and_then(|e| e.to_str())
         // PLCopen TC6 XML sources sit beside the ST ones.
         .is_some_and(|e| e.eq_ignore_ascii_case("st") || e.eq_ignore_ascii_case("xml"))
-        || automat_vendor::is_fst_file(&p.to_string_lossy())
+        || automat_dialect::is_fst_file(&p.to_string_lossy())
 }
 
 /// Every `*.st` under `dir` (recursively when `deep`), sorted, each file

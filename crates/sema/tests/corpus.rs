@@ -6,7 +6,7 @@
 //! A project is either one `.st` file directly in `valid/` or `invalid/`, or one sub-directory made
 //! of all the `.st` files in it, sorted by name (for cases that need several files: globals in one,
 //! programs in another). `tests/corpus/library/` belongs to another suite and is not read here, and
-//! neither are the `isagraf_*` / `pl7_*` projects (vendor dialects: `crates/vendor/tests/corpus.rs`).
+//! neither are the `isagraf_*` / `pl7_*` projects (vendor dialects: `crates/dialect/tests/corpus.rs`).
 //!
 //! Expectations are comments at the end of the offending line:
 //! - `x := d; //~ E030` expects error E030 on this line;
@@ -224,9 +224,9 @@ fn is_generated_only_code(code: Code) -> bool {
 }
 
 /// E150–E169: diagnostics of the vendor dialects, which need `--lib`;
-/// `crates/vendor/tests/corpus.rs` covers them.
-/// E15x/E16x: `crates/vendor/tests/corpus.rs`; E18x (Festo STL):
-/// `crates/vendor/tests/fst.rs`.
+/// `crates/dialect/tests/corpus.rs` covers them.
+/// E15x/E16x: `crates/dialect/tests/corpus.rs`; E18x (Festo STL):
+/// `crates/dialect/tests/fst.rs`.
 fn is_vendor_code(code: Code) -> bool {
     ["E15", "E16", "E18"]
         .iter()
@@ -240,7 +240,7 @@ fn is_plcopen_code(code: Code) -> bool {
 }
 
 /// `isagraf_*` / `pl7_*` projects are checked with their dialect on by
-/// `crates/vendor/tests/corpus.rs`, not here.
+/// `crates/dialect/tests/corpus.rs`, not here.
 fn is_vendor_project(name: &str) -> bool {
     name.starts_with("isagraf_") || name.starts_with("pl7_")
 }

@@ -16,7 +16,7 @@ fn st_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for e in entries.flatten() {
         let p = e.path();
         // Vendor-dialect projects are annotated for `--lib`:
-        // crates/vendor/tests/corpus.rs checks them.
+        // crates/dialect/tests/corpus.rs checks them.
         let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
         if name.is_some_and(|n| n.starts_with("isagraf_") || n.starts_with("pl7_")) {
             continue;

@@ -14,14 +14,14 @@ pub fn check(text: &str, dialect: u8) {
         1 => &["isagraf"],
         _ => &["pl7"],
     };
-    let Ok(dialects) = automat_vendor::parse_names(names) else {
+    let Ok(dialects) = automat_dialect::parse_names(names) else {
         return;
     };
     let mut map = SourceMap::new();
     map.add("fuzz.st", text.to_string());
-    automat_vendor::add_libraries(&mut map, &dialects);
+    automat_dialect::add_libraries(&mut map, &dialects);
     let mut interner = Interner::new();
-    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &dialects);
+    let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &dialects);
     let mut diags = analysis.diagnostics.clone();
     if !analysis.has_errors() {
         diags.extend(automat_lower::check(&units, &analysis, &interner, &map));

@@ -18,10 +18,10 @@ use std::sync::atomic::AtomicBool;
 fn compile(name: &str, text: &str, spec: &Spec) -> Result<Program, String> {
     let mut map = SourceMap::new();
     map.add(name, text);
-    let dialects = automat_vendor::parse_names(&spec.libraries)?;
-    automat_vendor::add_libraries(&mut map, &dialects);
+    let dialects = automat_dialect::parse_names(&spec.libraries)?;
+    automat_dialect::add_libraries(&mut map, &dialects);
     let mut interner = Interner::new();
-    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &dialects);
+    let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &dialects);
     if analysis.has_errors() {
         return Err(render::render_report(&map, &analysis.diagnostics));
     }

@@ -8,11 +8,11 @@
 //!   must give (compared as sorted lists).
 
 use automat_base::{Interner, SourceMap};
+use automat_dialect::Dialect;
 use automat_engine::Engine;
 use automat_iec::Elementary;
 use automat_lower::{lower, LowerOptions};
 use automat_runtime::{resolve, value, Executor, PlaceType};
-use automat_vendor::Dialect;
 use std::path::{Path, PathBuf};
 
 struct Case {
@@ -114,9 +114,9 @@ fn run_case(path: &Path, jit: bool) -> Result<(), String> {
         map.add(name.clone(), t.clone());
     }
     let dialects = [Dialect::Fst];
-    automat_vendor::add_libraries(&mut map, &dialects);
+    automat_dialect::add_libraries(&mut map, &dialects);
     let mut interner = Interner::new();
-    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &dialects);
+    let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &dialects);
     let report = automat_base::render::render_report(&map, &analysis.diagnostics);
     if let Some(want) = &case.errors {
         let mut got: Vec<String> = analysis
@@ -269,10 +269,10 @@ fn mutated_cases_never_panic() {
                             },
                         );
                     }
-                    automat_vendor::add_libraries(&mut map, &[Dialect::Fst]);
+                    automat_dialect::add_libraries(&mut map, &[Dialect::Fst]);
                     let mut interner = Interner::new();
                     let (units, analysis) =
-                        automat_vendor::check_sources(&map, &mut interner, &[Dialect::Fst]);
+                        automat_dialect::check_sources(&map, &mut interner, &[Dialect::Fst]);
                     // The generated ST never fails to check: STL errors
                     // are caught in the STL files.
                     let generated: Vec<_> = analysis

@@ -1,21 +1,21 @@
-//! The example programs of the vendor dialects (`tests/vendor/*/`), each a
+//! The example programs of the vendor dialects (`tests/dialect/*/`), each a
 //! project folder named after its dialect, compiled with that dialect and
 //! run on the virtual clock (10 ms scans): the values after given scans are
 //! exact.
 
 use automat_base::{render, Interner, SourceMap};
+use automat_dialect::Dialect;
 use automat_engine::Engine;
 use automat_lower::{lower, LowerOptions};
 use automat_runtime::io::NoIo;
 use automat_runtime::scan::Env;
 use automat_runtime::{resolve, run, value, ClockMode, Limit, RunConfig, SystemClock};
-use automat_vendor::Dialect;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
 fn example(name: &str) -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../tests/vendor")
+        .join("../../tests/dialect")
         .join(name);
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
@@ -32,9 +32,9 @@ fn compile(files: &[(String, String)], dialect: Dialect) -> automat_ir::Program 
     for (name, text) in files {
         map.add(name.clone(), text.clone());
     }
-    automat_vendor::add_libraries(&mut map, &[dialect]);
+    automat_dialect::add_libraries(&mut map, &[dialect]);
     let mut interner = Interner::new();
-    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &[dialect]);
+    let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &[dialect]);
     assert!(
         analysis.diagnostics.is_empty(),
         "the project should check clean:\n{}",

@@ -14,7 +14,7 @@
 //! missing warning is pinned as well as a present one.
 
 use automat_base::{render, Code, Interner, SourceMap};
-use automat_vendor::Dialect;
+use automat_dialect::Dialect;
 use std::path::{Path, PathBuf};
 
 fn corpus(dir: &str) -> PathBuf {
@@ -76,9 +76,9 @@ fn check(dialect: Dialect, files: &[PathBuf]) -> Checked {
         map.add(f.display().to_string(), text.clone());
         texts.push(text);
     }
-    automat_vendor::add_libraries(&mut map, &[dialect]);
+    automat_dialect::add_libraries(&mut map, &[dialect]);
     let mut interner = Interner::new();
-    let (units, analysis) = automat_vendor::check_sources(&map, &mut interner, &[dialect]);
+    let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &[dialect]);
     let site = |d: &automat_base::Diagnostic| {
         let file = d.span.file.0 as usize;
         let line = if file < files.len() {

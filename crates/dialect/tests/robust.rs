@@ -3,7 +3,7 @@
 //! goes through `check_sources` with both dialects on.
 
 use automat_base::{Interner, SourceMap};
-use automat_vendor::{add_libraries, check_sources, Dialect};
+use automat_dialect::{add_libraries, check_sources, Dialect};
 use std::path::{Path, PathBuf};
 
 fn st_files(dir: &Path, out: &mut Vec<PathBuf>) {
