@@ -116,6 +116,46 @@ impl SafeState {
         }
     }
 
+    /// The writes that undo [`apply`](Self::apply) on `image` as it is now:
+    /// every byte and bit the safe state covers, with its current value.
+    /// A PLC in STOP shows the outside world its safe state, but the
+    /// program's memory is not the outside world: on the next start the
+    /// program continues from the values it had (an output set by a stored
+    /// action at a step's activation is driven again, as on a real PLC,
+    /// where STOP replaces only what reaches the output hardware).
+    pub fn held(&self, image: &[u8]) -> SafeState {
+        let mut writes = Vec::with_capacity(self.writes.len());
+        for w in &self.writes {
+            let r = match w {
+                Write::Zero(r) => r.clone(),
+                Write::Bytes { at, bytes } => *at..at.saturating_add(bytes.len()),
+                Write::Bit { at, bit, .. } => {
+                    if let Some(b) = image.get(*at) {
+                        writes.push(Write::Bit {
+                            at: *at,
+                            bit: *bit,
+                            on: *bit < 8 && b & (1 << bit) != 0,
+                        });
+                    }
+                    continue;
+                }
+            };
+            if let Some(src) = image.get(r.clone()) {
+                writes.push(Write::Bytes {
+                    at: r.start,
+                    bytes: src.to_vec(),
+                });
+            }
+        }
+        // Applied in reverse: where two writes overlap, the oldest value
+        // (the one before the safe state) is the one left.
+        writes.reverse();
+        SafeState {
+            writes,
+            ..SafeState::default()
+        }
+    }
+
     /// What the safe state does, for the message after a stop:
     /// `the %Q area (1 byte) and 2 program outputs (main.y, main.z) set to 0/FALSE; main.valve set to TRUE`.
     pub fn describe(&self) -> String {

@@ -265,3 +265,27 @@ fn arrays_of_structures_zero_each_field_by_its_type() {
     want[44..48].fill(0);
     assert_eq!(img, want);
 }
+
+#[test]
+fn held_puts_back_every_value_the_safe_state_replaced() {
+    let p = outputs();
+    let mut safe = SafeState::of_program(&p);
+    let place = |path: &str| crate::resolve(&p, path).unwrap();
+    // A configured value over a zeroed one: two writes on the same bytes.
+    safe.set_literal("MAIN.SPEED", &place("MAIN.SPEED"), "7")
+        .unwrap();
+    let before: Vec<u8> = (0..64u8).map(|i| i.wrapping_mul(37) | 1).collect();
+    let mut img = before.clone();
+    let held = safe.held(&img);
+    safe.apply(&mut img);
+    assert_ne!(img, before);
+    held.apply(&mut img);
+    assert_eq!(img, before);
+    // LAMP is one bit: its neighbours are the program's, never the held copy's.
+    let mut img = before.clone();
+    let held = safe.held(&img);
+    safe.apply(&mut img);
+    img[36] ^= 0x01;
+    held.apply(&mut img);
+    assert_eq!(img[36], before[36] ^ 0x01);
+}

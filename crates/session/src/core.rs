@@ -119,6 +119,11 @@ struct Core {
     retained: Vec<u8>,
     /// Applied on a `stop` command (a PLC STOP).
     safe: SafeState,
+    /// While stopped by a `stop` command: what the program's outputs held
+    /// before the safe state, and the writes made since, in order. A start
+    /// (or step) puts them back so the program continues where it stopped;
+    /// a restart or a fault drops them.
+    held: Option<(SafeState, Vec<crate::value::Stored>)>,
     sim: Option<Rc<RefCell<Sim>>>,
     /// The last fault, as the runtime reports it.
     fault: Option<String>,
@@ -173,6 +178,9 @@ impl Core {
         let answer = match command {
             Command::Write(stored) => {
                 stored.apply(image);
+                if let Some((_, written)) = &mut self.held {
+                    written.push(stored);
+                }
                 Ok(())
             }
             Command::Force(f) => {
@@ -232,6 +240,7 @@ impl Core {
             Control::Start => {
                 self.steps = None;
                 self.state = State::Running;
+                self.unhold(image);
                 self.resume_plant();
                 Ok(())
             }
@@ -240,6 +249,9 @@ impl Core {
                 if !fault {
                     // A PLC in STOP holds its outputs in the safe state, and
                     // the plant's actuators follow (in fault they already do).
+                    if self.held.is_none() {
+                        self.held = Some((self.safe.held(image), Vec::new()));
+                    }
                     self.safe.apply(image);
                     if let Some(s) = &self.sim {
                         s.borrow_mut().safe_state(image);
@@ -251,6 +263,7 @@ impl Core {
             Control::Step(0) => Ok(()),
             Control::Step(n) => {
                 self.state = State::Running;
+                self.unhold(image);
                 self.resume_plant();
                 // Answered when the scans have run.
                 if let Some((_, earlier)) = self.steps.replace((n, reply)) {
@@ -263,6 +276,7 @@ impl Core {
             Control::ColdRestart | Control::WarmRestart => {
                 let kept = (c == Control::WarmRestart)
                     .then_some((self.retain_ranges.as_slice(), self.retained.as_slice()));
+                self.held = None;
                 restart_image(&self.program, image, kept);
                 self.forces.borrow().apply(image);
                 // The restarted image is consistent: RETAIN keeps it until
@@ -280,6 +294,18 @@ impl Core {
             }
         };
         self.answers.push((reply, answer));
+    }
+
+    /// Leaving a STOP: the outputs get back the values the program gave
+    /// them, then the writes made while stopped, then the forces.
+    fn unhold(&mut self, image: &mut [u8]) {
+        if let Some((held, written)) = self.held.take() {
+            held.apply(image);
+            for w in &written {
+                w.apply(image);
+            }
+            self.forces.borrow().apply(image);
+        }
     }
 
     /// The plant's actuators follow the image again (after a STOP).
@@ -542,6 +568,7 @@ pub(crate) fn main(
         retain_ranges: ranges,
         retained,
         safe: safe.clone(),
+        held: None,
         sim: sim.clone(),
         fault: None,
     };

@@ -356,3 +356,30 @@ END_PROGRAM
         ("0".to_string(), "0".to_string())
     );
 }
+
+#[test]
+fn crane_moves_on_after_stop_and_start_in_the_middle_of_a_step() {
+    let s = project("crane");
+    step(&s, 1);
+    s.force("Ctrl.Pornire", "1").unwrap();
+    step(&s, 2);
+    s.unforce("Ctrl.Pornire").unwrap();
+    step(&s, 5);
+    assert_eq!(get(&s, "Ctrl.GS2.X"), "TRUE");
+    assert_eq!(get(&s, "Ctrl.M2S"), "TRUE");
+    // STOP: the motor is off and the plant stands.
+    s.control(Control::Stop).unwrap();
+    assert_eq!(get(&s, "Ctrl.M2S"), "FALSE");
+    // Going on in GS2, the motor runs again (the chart's N action set it
+    // at the step's activation, long before) and the crane reaches the
+    // top (l2), where GS2 hands over to GS3.
+    step(&s, 1);
+    assert_eq!(get(&s, "Ctrl.M2S"), "TRUE");
+    let mut scans = 0;
+    while get(&s, "Ctrl.GS2.X") == "TRUE" && scans < 10_000 {
+        step(&s, 10);
+        scans += 10;
+    }
+    assert_eq!(get(&s, "Ctrl.GS3.X"), "TRUE", "after {scans} scans");
+    assert_eq!(get(&s, "Ctrl.l2"), "TRUE");
+}

@@ -122,3 +122,64 @@ fn a_stop_command_holds_the_outputs_in_the_safe_state_and_a_step_does_not() {
     assert_eq!(automat_runtime::value::format(&end.image, &place), "FALSE");
     assert_eq!(end.retain.map(|r| r.last), None);
 }
+
+/// `lamp`, `valve` and `level` are set once, when `go` comes: stored
+/// outputs, as a step's S action or an edge-driven output is.
+const LATCHED: &str = "PROGRAM Main
+VAR_OUTPUT
+    lamp : BOOL;
+    valve : BOOL;
+    level : INT;
+END_VAR
+VAR
+    go : BOOL;
+    done : BOOL;
+END_VAR
+    IF go AND NOT done THEN
+        lamp := TRUE;
+        valve := TRUE;
+        level := 42;
+        done := TRUE;
+    END_IF;
+END_PROGRAM
+";
+
+#[test]
+fn leaving_a_stop_gives_the_outputs_back_their_program_values() {
+    let s = source(LATCHED);
+    s.write("go", "TRUE").unwrap();
+    step(&s, 3);
+    let outputs = ["lamp", "valve", "level"];
+    let now = |s: &automat_session::Session| outputs.map(|p| get(s, p));
+    assert_eq!(now(&s), ["TRUE", "TRUE", "42"]);
+    s.control(Control::Stop).unwrap();
+    assert_eq!(now(&s), ["FALSE", "FALSE", "0"]);
+    // A second stop keeps the values held at the first.
+    s.control(Control::Stop).unwrap();
+    // A write made while stopped wins over the held value.
+    s.write("valve", "FALSE").unwrap();
+    step(&s, 1);
+    // The program did not set lamp again (done is TRUE): the STOP did not
+    // change the program's memory, only what the outside saw meanwhile.
+    assert_eq!(now(&s), ["TRUE", "FALSE", "42"]);
+    // The same through start.
+    s.control(Control::Stop).unwrap();
+    assert_eq!(get(&s, "lamp"), "FALSE");
+    s.control(Control::Start).unwrap();
+    s.control(Control::Stop).unwrap();
+    step(&s, 1);
+    assert_eq!(get(&s, "lamp"), "TRUE");
+}
+
+#[test]
+fn a_restart_while_stopped_forgets_the_held_outputs() {
+    let s = source(LATCHED);
+    s.write("go", "TRUE").unwrap();
+    step(&s, 2);
+    s.control(Control::Stop).unwrap();
+    s.control(Control::ColdRestart).unwrap();
+    step(&s, 1);
+    // Cold: go is FALSE again, nothing sets lamp.
+    assert_eq!(get(&s, "lamp"), "FALSE");
+    assert_eq!(get(&s, "level"), "0");
+}
