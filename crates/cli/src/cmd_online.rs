@@ -220,6 +220,8 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
     // the server).
     let retain = RetainCfg::of(args, loaded.project.as_ref().map(|p| &p.retain));
     retain_run::check(&loaded.program, retain.as_ref())?;
+    let realtime =
+        crate::realtime_run::settings(args, loaded.project.as_ref(), !args.virtual_clock)?;
     let stop = Arc::new(AtomicBool::new(false));
     stop_on_signals(&stop);
     let virtual_clock = args.virtual_clock;
@@ -238,6 +240,9 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             every_ns: r.every_ns,
         }),
         safe: Some(loaded.safe.clone()),
+        realtime: realtime.clone(),
+        // Only a client of the server can restart a faulted PLC.
+        wait_after_fault: args.listen.is_some(),
     };
     let safe = loaded.safe;
     let program = Arc::new(loaded.program);
@@ -287,6 +292,9 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         })
     });
     let session = Arc::new(Session::start(Arc::clone(&program), config, build).map_err(bad)?);
+    if let Some(rt) = &realtime {
+        crate::realtime_run::announce(rt);
+    }
     let server = match opts.map(|o| automat_online::start(Arc::clone(&session), o)) {
         None => None,
         Some(Ok(s)) => Some(s),
@@ -334,6 +342,9 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             "{name} = {}",
             automat_runtime::value::format(&end.image, place)
         );
+    }
+    if args.stats {
+        eprintln!("{}", end.stats);
     }
     if let Some(e) = &end.error {
         return Err(bad(e));

@@ -159,6 +159,19 @@ pub struct RunArgs {
     /// off by default).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub(crate) max_instructions: Option<u64>,
+    /// Real-time mode (Linux, real-time runs): lock the process's memory
+    /// and run the scan thread at SCHED_FIFO (--rt-priority, default 80),
+    /// optionally pinned to --cpus; a refusal of the system is an error
+    /// that says why (exit 2). Projects: `[runtime] realtime = true`. See
+    /// docs/realtime.md.
+    #[arg(long)]
+    pub(crate) realtime: bool,
+    /// --realtime: the scan thread's SCHED_FIFO priority, 1 to 99.
+    #[arg(long, value_name = "N")]
+    pub(crate) rt_priority: Option<i32>,
+    /// --realtime: the CPUs the scan thread runs on (`1`, `0,2-3`).
+    #[arg(long, value_name = "LIST")]
+    pub(crate) cpus: Option<String>,
 }
 
 /// Splits `--trace` values on the commas that are not inside `[...]`, so
@@ -355,6 +368,9 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
     } else {
         ClockMode::RealTime
     };
+    if let Some(rt) = crate::realtime_run::settings(args, None, clock == ClockMode::RealTime)? {
+        crate::realtime_run::enter_here(&rt)?;
+    }
     let stop = Arc::new(AtomicBool::new(false));
     if limit == Limit::Unbounded {
         stop_on_signals(&stop);

@@ -37,6 +37,7 @@ mod live;
 mod out;
 mod plot;
 mod project_run;
+mod realtime_run;
 mod retain_run;
 
 use clap::{Parser, Subcommand};

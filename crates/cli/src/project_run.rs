@@ -229,6 +229,11 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
         eprintln!("error: --speed must be a number greater than 0");
         return Err(Outcome::BadInput);
     }
+    if let Some(rt) =
+        crate::realtime_run::settings(args, Some(&project), clock == ClockMode::RealTime)?
+    {
+        crate::realtime_run::enter_here(&rt)?;
+    }
     let stop = Arc::new(AtomicBool::new(false));
     if limit == Limit::Unbounded {
         stop_on_signals(&stop);

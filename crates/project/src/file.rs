@@ -51,6 +51,16 @@ struct RawFile {
     users: BTreeMap<String, RawUser>,
     #[serde(default)]
     tasks: BTreeMap<Spanned<String>, RawTask>,
+    runtime: Option<RawRuntime>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawRuntime {
+    #[serde(default)]
+    realtime: bool,
+    priority: Option<Spanned<i64>>,
+    cpus: Option<Spanned<String>>,
 }
 
 #[derive(Deserialize)]
@@ -145,6 +155,15 @@ pub struct RetainSpec {
     pub optional: bool,
 }
 
+/// `[runtime]` of `automat.toml`.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct RuntimeSpec {
+    /// `realtime = true`: every real-time run is in real-time mode.
+    pub realtime: bool,
+    /// `priority` and `cpus` (also for `automat run --realtime`).
+    pub settings: automat_runtime::realtime::Realtime,
+}
+
 /// One `[safe_state]` entry: the safe value of an output.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SafeSpec {
@@ -179,6 +198,8 @@ pub struct Project {
     pub users: Vec<UserSpec>,
     /// `[tasks.NAME]` tables, applied with [`crate::tasks::apply`].
     pub tasks: Vec<TaskSpec>,
+    /// `[runtime]`: the real-time mode of real-time runs.
+    pub runtime: RuntimeSpec,
     /// What loading has to say without failing: source files or folders
     /// reached twice through symbolic links (see [`crate::folder`]), as
     /// `warning: ...` lines for the caller to print.
@@ -363,6 +384,10 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
         .into_iter()
         .map(|(name, t)| task_spec(file, name, t, &mut errors))
         .collect();
+    let runtime = raw
+        .runtime
+        .map(|r| runtime_spec(file, r, &mut errors))
+        .unwrap_or_default();
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -380,8 +405,43 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
         retain,
         safe_state,
         users,
+        runtime,
         warnings: walk.warning().into_iter().collect(),
     })
+}
+
+/// `[runtime]`: `realtime = true`, `priority` (SCHED_FIFO 1..99, default
+/// 80), `cpus` (`"1"`, `"0,2-3"`).
+fn runtime_spec(file: FileId, raw: RawRuntime, errors: &mut Vec<Diagnostic>) -> RuntimeSpec {
+    use automat_runtime::realtime::{parse_cpus, Realtime};
+    let mut rt = Realtime::default();
+    if let Some(p) = &raw.priority {
+        match i32::try_from(*p.get_ref()) {
+            Ok(v) if (1..=99).contains(&v) => rt.priority = v,
+            _ => errors.push(Diagnostic::error(
+                Code::E300,
+                span_of(file, p.span()),
+                format!(
+                    "priority: {} is out of range: SCHED_FIFO priorities are 1 to 99",
+                    p.get_ref()
+                ),
+            )),
+        }
+    }
+    if let Some(c) = &raw.cpus {
+        match parse_cpus(c.get_ref()) {
+            Ok(cpus) => rt.cpus = cpus,
+            Err(e) => errors.push(Diagnostic::error(
+                Code::E300,
+                span_of(file, c.span()),
+                format!("cpus: {e}"),
+            )),
+        }
+    }
+    RuntimeSpec {
+        realtime: raw.realtime,
+        settings: rt,
+    }
 }
 
 fn retain_spec(

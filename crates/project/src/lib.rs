@@ -32,6 +32,7 @@ pub mod tasks;
 pub use bind::{bind, Binding};
 pub use exec::PlantExec;
 pub use file::{
-    find_above, load, project_file, PlantSpec, Project, RetainSpec, SafeSpec, UserSpec, FILE_NAME,
+    find_above, load, project_file, PlantSpec, Project, RetainSpec, RuntimeSpec, SafeSpec,
+    UserSpec, FILE_NAME,
 };
 pub use sim::{Action, Sim};

@@ -35,6 +35,7 @@ mod engine;
 pub mod executor;
 pub mod io;
 pub mod path;
+pub mod realtime;
 pub mod retain;
 pub mod safe;
 pub mod scan;

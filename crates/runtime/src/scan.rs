@@ -321,12 +321,23 @@ pub fn run_safe<E: Executor>(
     };
     let end = std::thread::scope(|s| {
         let timer = l.watchdog.watcher(stop);
+        let (started, running) = std::sync::mpsc::sync_channel(1);
         let spawned = std::thread::Builder::new()
             .name("automat-watchdog".into())
-            .spawn_scoped(s, timer);
+            .spawn_scoped(s, move || {
+                // In real-time mode the timer must preempt a looping scan
+                // on the same CPU: one priority above the scan thread.
+                crate::realtime::above_inherited();
+                let _ = started.send(());
+                timer()
+            });
         if let Err(e) = spawned {
             return RunEnd::Observer(format!("cannot start the watchdog thread: {e}"));
         }
+        // The first scan waits for the timer thread: at the scan thread's
+        // SCHED_FIFO priority on its CPU, it would never get to run (and
+        // raise its priority) once a scan loops.
+        let _ = running.recv();
         let end = l.run(cfg);
         l.watchdog.quit();
         end
@@ -367,10 +378,17 @@ impl<E: Executor> Loop<'_, '_, E> {
                     return RunEnd::Limit;
                 }
             }
-            if cfg.clock == ClockMode::RealTime && !self.wait_until(origin.saturating_add(t)) {
+            let deadline = origin.saturating_add(t);
+            if cfg.clock == ClockMode::RealTime && !self.wait_until(deadline) {
                 return RunEnd::Stopped;
             }
             let started = self.env.clock.now_ns();
+            if cfg.clock == ClockMode::RealTime {
+                // Jitter: how late the scan starts after its deadline.
+                self.stats
+                    .start_late
+                    .record(started.saturating_sub(deadline));
+            }
             if let Some(end) = self.scan(t) {
                 return end;
             }

@@ -124,6 +124,8 @@ struct Core {
     /// (or step) puts them back so the program continues where it stopped;
     /// a restart or a fault drops them.
     held: Option<(SafeState, Vec<crate::value::Stored>)>,
+    /// Scan statistics of every run so far (a stop ends a run).
+    totals: Stats,
     sim: Option<Rc<RefCell<Sim>>>,
     /// The last fault, as the runtime reports it.
     fault: Option<String>,
@@ -472,6 +474,24 @@ pub(crate) fn main(
     shared: Arc<Shared>,
     ready: Sender<Result<(), String>>,
 ) -> Final {
+    if let Some(rt) = &config.realtime {
+        match automat_runtime::realtime::enter(rt) {
+            Ok(()) => {}
+            Err(e) => {
+                let _ = ready.send(Err(e.clone()));
+                return Final {
+                    image: Vec::new(),
+                    snapshot: Arc::clone(
+                        &*shared.snapshot.lock().unwrap_or_else(|p| p.into_inner()),
+                    ),
+                    error: Some(e),
+                    fault: None,
+                    retain: None,
+                    stats: Stats::default(),
+                };
+            }
+        }
+    }
     let parts = match build() {
         Ok(p) => p,
         Err(e) => {
@@ -482,6 +502,7 @@ pub(crate) fn main(
                 error: Some(e),
                 fault: None,
                 retain: None,
+                stats: Stats::default(),
             };
         }
     };
@@ -569,6 +590,7 @@ pub(crate) fn main(
         retained,
         safe: safe.clone(),
         held: None,
+        totals: Stats::default(),
         sim: sim.clone(),
         fault: None,
     };
@@ -607,6 +629,9 @@ pub(crate) fn main(
             };
             run_safe(&mut exec, &cfg, &mut env, &safe)
         };
+        if let Ok(r) = &report {
+            core.totals.merge(&r.stats);
+        }
         match report {
             Err(e) => {
                 error = Some(e);
@@ -647,6 +672,9 @@ pub(crate) fn main(
                         ),
                     };
                     core.plc_time_ns = f.plc_time_ns.saturating_add(core.offset.get());
+                    if !config.wait_after_fault {
+                        break;
+                    }
                     if !core.between(exec.image_mut(), false, false) && core.restart.is_none() {
                         break;
                     }
@@ -713,5 +741,6 @@ fn finish(mut core: Core, exec: &impl Executor, error: Option<String>, has_retai
             .then(|| core.fault.take())
             .flatten(),
         retain,
+        stats: std::mem::take(&mut core.totals),
     }
 }

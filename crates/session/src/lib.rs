@@ -173,6 +173,14 @@ pub struct Config {
     /// command and when the session ends (`None`: the program's default,
     /// [`SafeState::of_program`]).
     pub safe: Option<SafeState>,
+    /// Real-time mode for the scan thread (memory locked, SCHED_FIFO,
+    /// CPUs): entered on the scan thread before the program is built; a
+    /// refusal of the system ends the start with its message.
+    pub realtime: Option<automat_runtime::realtime::Realtime>,
+    /// After a runtime fault, wait in the fault state for a restart
+    /// command (a server's clients can give one); `false`: the fault ends
+    /// the session (nobody could restart it), as on a plain `automat run`.
+    pub wait_after_fault: bool,
 }
 
 /// The RETAIN file of a session: saved from end-of-scan snapshots only
@@ -208,6 +216,8 @@ pub struct Final {
     pub fault: Option<String>,
     /// The RETAIN saves (`None` without a RETAIN file).
     pub retain: Option<RetainSaves>,
+    /// Scan statistics of the whole session (every run between stops).
+    pub stats: automat_runtime::stats::Stats,
 }
 
 /// Values of watched paths after a scan, as `--print` shows them.

@@ -23,6 +23,8 @@ pub fn config() -> Config {
         stop: Arc::new(AtomicBool::new(false)),
         retain: None,
         safe: None,
+        realtime: None,
+        wait_after_fault: true,
     }
 }
 
