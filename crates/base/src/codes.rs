@@ -310,6 +310,8 @@ codes! {
         "A statement follows RETURN, EXIT or CONTINUE in the same block and can never run.";
     W003 => "implicit narrowing in a constant",
         "A constant is converted to a smaller type; the value fits, so the program is accepted.";
+    W004 => "integer division assigned to a real",
+        "An integer division is assigned to a REAL or LREAL: it is computed in the integer type and truncated toward zero before the conversion (`r := i / 2` with `i = 7` gives 3.0, not 3.5). Convert an operand first: `r := INT_TO_REAL(i) / 2.0`.";
     W120 => "unreachable step",
         "No sequence of transitions from the initial step can activate this step.";
     W121 => "step without a way out",

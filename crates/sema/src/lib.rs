@@ -59,6 +59,7 @@ pub mod names;
 pub mod ops;
 mod sfc;
 pub mod stdlib;
+pub mod suggest;
 pub mod types;
 pub mod value;
 

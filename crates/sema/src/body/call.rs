@@ -160,7 +160,11 @@ impl<'m> Checker<'m> {
             }
             Named::Var | Named::Unknown => {
                 self.err(Code::E022, span, |c| {
-                    format!("unknown function or function block `{}`", c.name(sym))
+                    format!(
+                        "unknown function or function block `{}`{}",
+                        c.name(sym),
+                        c.pou_hint(sym)
+                    )
                 });
                 self.args_unchecked(args);
                 Typed::ERROR
@@ -477,10 +481,11 @@ impl<'m> Checker<'m> {
             Fit::Mismatch => {
                 self.err(Code::E052, span, |c| {
                     format!(
-                        "{} expects {}, found {}",
+                        "{} expects {}, found {}{}",
                         what(c),
                         c.type_name(to),
-                        c.tyname(t.ty)
+                        c.tyname(t.ty),
+                        c.conversion_hint(t.ty, to)
                     )
                 });
             }

@@ -323,7 +323,12 @@ impl<'m> Checker<'m> {
         }
         if matches!(named, Named::Unknown) {
             self.err(Code::E020, id.span, |c| {
-                format!("unknown variable `{}` {}", c.name(id.sym), c.where_())
+                format!(
+                    "unknown variable `{}` {}{}",
+                    c.name(id.sym),
+                    c.where_(),
+                    c.var_hint(id.sym)
+                )
             });
         } else {
             self.err(Code::E026, id.span, |c| c.what_is(id.sym, &named));

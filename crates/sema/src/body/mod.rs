@@ -208,6 +208,105 @@ impl<'m> Checker<'m> {
     }
 
     /// `in `MainProg`` / `in configuration `Cell`` for messages.
+    /// What to add to "unknown variable": the nearest visible name, or
+    /// that a global of that name needs a VAR_EXTERNAL here.
+    pub(crate) fn var_hint(&self, sym: Symbol) -> String {
+        if let Scope::Pou(_) = self.scope {
+            if self.model.globals.get(sym).is_some_and(|g| !g.constant) {
+                return format!(
+                    "; `{}` is a global variable: declare it in a VAR_EXTERNAL section to use it here",
+                    self.name(sym)
+                );
+            }
+        }
+        let mut names: Vec<&str> = Vec::new();
+        match self.scope {
+            Scope::Pou(id) => {
+                if let Some(p) = self.model.pou(id) {
+                    names.extend(p.vars.vars.iter().map(|v| self.name(v.name)));
+                }
+            }
+            Scope::Config(c, r) => {
+                if let Some(cf) = self.model.configs.get(c) {
+                    names.extend(cf.globals.vars.iter().map(|v| self.name(v.name)));
+                    if let Some(res) = r.and_then(|r| cf.resources.get(r)) {
+                        names.extend(res.globals.vars.iter().map(|v| self.name(v.name)));
+                    }
+                }
+            }
+        }
+        names.extend(
+            self.model
+                .globals
+                .vars
+                .iter()
+                .filter(|g| g.constant)
+                .map(|g| self.name(g.name)),
+        );
+        names.sort_unstable();
+        crate::suggest::did_you_mean(self.name(sym), names)
+    }
+
+    /// What to add to a type mismatch from `from` to `to`: how to write a
+    /// duration for an integer given to a TIME, or the conversion function
+    /// that exists between the two types.
+    pub(crate) fn conversion_hint(&self, from: Ty, to: TypeId) -> String {
+        use crate::stdlib::conv::{allowed, ConvTy};
+        use crate::types::Elem;
+        let types = &self.model.types;
+        let to_conv = match types.get(to) {
+            TypeKind::String { wide, .. } => Some(ConvTy::Str(*wide)),
+            _ => types.elem(to).map(ConvTy::Elem),
+        };
+        let Some(to_conv) = to_conv else {
+            return String::new();
+        };
+        if let ConvTy::Elem(t @ (Elem::Time | Elem::Ltime)) = to_conv {
+            let from_int = match from {
+                Ty::AnyInt => true,
+                Ty::Of(id) => types.elem(id).is_some_and(|e| e.is_int()),
+                _ => false,
+            };
+            if from_int {
+                let prefix = if t == Elem::Time { "T" } else { "LTIME" };
+                return format!(
+                    "; write a duration such as `{prefix}#5s` or `{prefix}#500ms`, or convert a number of milliseconds with `{}_TO_{}`",
+                    match from {
+                        Ty::Of(id) => types.elem(id).map_or("DINT", |e| e.name()),
+                        _ => "DINT",
+                    },
+                    t.name()
+                );
+            }
+        }
+        let from_conv = match from {
+            Ty::Of(id) => match types.get(id) {
+                TypeKind::String { wide, .. } => Some(ConvTy::Str(*wide)),
+                _ => types.elem(id).map(ConvTy::Elem),
+            },
+            _ => None,
+        };
+        let name = |c: ConvTy| match c {
+            ConvTy::Elem(e) => e.name(),
+            ConvTy::Str(false) => "STRING",
+            ConvTy::Str(true) => "WSTRING",
+        };
+        match from_conv {
+            Some(f) if f != to_conv && allowed(f, to_conv) => {
+                format!("; convert it with `{}_TO_{}(...)`", name(f), name(to_conv))
+            }
+            _ => String::new(),
+        }
+    }
+
+    /// What to add to "unknown function or function block": the nearest
+    /// POU name (the standard function blocks included).
+    pub(crate) fn pou_hint(&self, sym: Symbol) -> String {
+        let mut names: Vec<&str> = self.model.pou_names.keys().map(|&s| self.name(s)).collect();
+        names.sort_unstable();
+        crate::suggest::did_you_mean(self.name(sym), names)
+    }
+
     pub(crate) fn where_(&self) -> String {
         match self.scope {
             Scope::Pou(id) => match self.model.pou(id) {

@@ -56,6 +56,7 @@ impl<'m> Checker<'m> {
                 let v = self.expr(value, expect);
                 if let Some(to) = expect {
                     self.assign_fits(&v, to, value.span, target);
+                    self.integer_division_to_real(value, &v, to, target);
                 }
             }
             StmtKind::Expr(e) => match &e.kind {
@@ -66,8 +67,20 @@ impl<'m> Checker<'m> {
                     let t = self.expr(e, None);
                     if t.ty != Ty::Error {
                         self.err(Code::E063, e.span, |c| {
+                            let fix = match &e.kind {
+                                ExprKind::Binary {
+                                    op: automat_syntax::ast::BinaryOp::Eq,
+                                    lhs,
+                                    rhs,
+                                } => format!(
+                                    "; to assign, write `{} := {}`",
+                                    expr_text(c.interner, lhs),
+                                    expr_text(c.interner, rhs)
+                                ),
+                                _ => String::new(),
+                            };
                             format!(
-                                "the expression `{}` has no effect; only calls can be statements",
+                                "the expression `{}` has no effect; only calls can be statements{fix}",
                                 expr_text(c.interner, e)
                             )
                         });
@@ -131,6 +144,45 @@ impl<'m> Checker<'m> {
         self.loop_depth -= 1;
     }
 
+    /// W004: `r := i / 2` with an integer quotient and a REAL target.
+    fn integer_division_to_real(&mut self, value: &Expr, v: &Typed, to: TypeId, target: &Expr) {
+        use crate::types::Elem;
+        let mut e = value;
+        while let ExprKind::Paren(inner) = &e.kind {
+            e = inner;
+        }
+        let ExprKind::Binary {
+            op: automat_syntax::ast::BinaryOp::Div,
+            ..
+        } = &e.kind
+        else {
+            return;
+        };
+        let types = &self.model.types;
+        let real_target = matches!(types.elem(to), Some(Elem::Real | Elem::Lreal));
+        let int_quotient = match v.ty {
+            Ty::AnyInt => true,
+            Ty::Of(id) => types.elem(id).is_some_and(|e| e.is_int()),
+            _ => false,
+        };
+        if real_target && int_quotient {
+            let shown = v.value.as_ref().map(|x| x.show());
+            self.warn(Code::W004, value.span, |c| {
+                let mut m = format!(
+                    "the integer division `{}` truncates before it is converted to {} for `{}`",
+                    expr_text(c.interner, e),
+                    c.type_name(to),
+                    expr_text(c.interner, target)
+                );
+                if let Some(s) = shown {
+                    m.push_str(&format!(" (it gives {s})"));
+                }
+                m.push_str("; convert an operand to a real first");
+                m
+            });
+        }
+    }
+
     /// `target := v`: E030 (types or a literal out of range), E038 (subrange), W003.
     pub(crate) fn assign_fits(&mut self, v: &Typed, to: TypeId, span: Span, target: &Expr) {
         let shown = || v.value.as_ref().map_or_else(String::new, |x| x.show());
@@ -169,9 +221,10 @@ impl<'m> Checker<'m> {
                 self.err(Code::E030, span, |c| {
                     let from = crate::names::value_desc(&c.model.types, c.interner, v);
                     format!(
-                        "cannot assign {from} to `{}` of type {}",
+                        "cannot assign {from} to `{}` of type {}{}",
                         expr_text(c.interner, target),
-                        c.type_name(to)
+                        c.type_name(to),
+                        c.conversion_hint(v.ty, to)
                     )
                 });
             }
@@ -311,7 +364,12 @@ impl<'m> Checker<'m> {
             }
             None => {
                 self.err(Code::E020, var.span, |c| {
-                    format!("unknown variable `{}` {}", c.name(var.sym), c.where_())
+                    format!(
+                        "unknown variable `{}` {}{}",
+                        c.name(var.sym),
+                        c.where_(),
+                        c.var_hint(var.sym)
+                    )
                 });
                 None
             }

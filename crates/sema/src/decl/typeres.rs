@@ -207,10 +207,25 @@ impl<'a> Builder<'a> {
             }
         }
         let n = self.name(id.sym);
+        let mut names: Vec<&str> = self
+            .type_slots
+            .keys()
+            .chain(self.syms.elems.keys())
+            .chain([&self.syms.string, &self.syms.wstring])
+            .map(|&s| self.name(s))
+            .chain(
+                self.pous
+                    .iter()
+                    .filter(|p| p.instance_type.is_some())
+                    .map(|p| self.name(p.ast.name.sym)),
+            )
+            .collect();
+        names.sort_unstable();
+        let hint = crate::suggest::did_you_mean(n, names);
         self.emit(Diagnostic::error(
             Code::E021,
             id.span,
-            format!("unknown type `{n}`"),
+            format!("unknown type `{n}`{hint}"),
         ));
         (TypeId::ERROR, None)
     }

@@ -11,7 +11,7 @@
 //! Invariants: lookup is by name, case-insensitive, and pure; a name that is
 //! not a standard function gives `None` (user POUs shadow standard ones).
 
-mod conv;
+pub mod conv;
 mod table;
 
 use crate::types::Elem;

@@ -446,7 +446,14 @@ impl Parser<'_> {
             _ => match self.ident_here() {
                 Some(id) => ExprKind::Name(id),
                 None => {
-                    self.expected("an expression");
+                    if self.at_doubled_equals() {
+                        self.error_here(
+                            "`==` is not an ST operator: equality is a single `=` (`IF a = b THEN`), assignment is `:=`"
+                                .to_string(),
+                        );
+                    } else {
+                        self.expected("an expression");
+                    }
                     return self.error_expr();
                 }
             },

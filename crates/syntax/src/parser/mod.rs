@@ -118,6 +118,12 @@ impl<'a> Parser<'a> {
         self.toks.get(self.pos + n).map_or(Tok::Eof, |t| t.tok)
     }
 
+    /// `=` right after another `=` (C's `==`).
+    fn at_doubled_equals(&self) -> bool {
+        let prev = self.pos.checked_sub(1).and_then(|i| self.toks.get(i));
+        self.at(Tok::Eq) && prev.is_some_and(|p| p.tok == Tok::Eq && p.end == self.cur().start)
+    }
+
     fn at(&self, t: Tok) -> bool {
         self.peek() == t
     }
