@@ -250,3 +250,57 @@ impl<'s> Imp<'s> {
         }
     }
 }
+
+/// Names the LD, FBD or SFC element each diagnostic of `file` points into:
+/// a diagnostic of the checker (an unknown name, a type mismatch at a pin)
+/// whose span lies inside an element with a `localId` gets the prefix
+/// "POU `P`, localId N: " the importer's own diagnostics have. Diagnostics
+/// of other files, outside graphical elements, or already naming a POU are
+/// left as they are.
+pub fn name_elements(file: FileId, src: &str, diags: &mut [Diagnostic]) {
+    if !diags.iter().any(|d| d.span.file == file) {
+        return;
+    }
+    let opts = ParsingOptions {
+        allow_dtd: false,
+        nodes_limit: NODES_LIMIT,
+        ..ParsingOptions::default()
+    };
+    let Ok(doc) = Document::parse_with_options(src, opts) else {
+        return;
+    };
+    // (start, end, pou, localId) of every element with a localId in a body.
+    let mut elems: Vec<(usize, usize, String, String)> = Vec::new();
+    for n in doc.descendants().filter(|n| n.is_element()) {
+        let Some(id) = xml::attr_str(n, "localId") else {
+            continue;
+        };
+        let Some(pou) = n
+            .ancestors()
+            .find(|a| xml::is(*a, "pou"))
+            .and_then(|p| xml::attr_str(p, "name"))
+        else {
+            continue;
+        };
+        let r = n.range();
+        elems.push((
+            r.start,
+            r.end,
+            pou.trim().to_string(),
+            id.trim().to_string(),
+        ));
+    }
+    for d in diags.iter_mut().filter(|d| d.span.file == file) {
+        if d.message.starts_with("POU `") {
+            continue;
+        }
+        let at = d.span.start as usize;
+        let inner = elems
+            .iter()
+            .filter(|(s, e, _, _)| *s <= at && at < *e)
+            .min_by_key(|(s, e, _, _)| e - s);
+        if let Some((_, _, pou, id)) = inner {
+            d.message = format!("POU `{pou}`, localId {id}: {}", d.message);
+        }
+    }
+}
