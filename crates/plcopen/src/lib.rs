@@ -30,6 +30,7 @@ pub(crate) mod out;
 mod pou;
 mod remap;
 mod sfc;
+pub mod sheet;
 pub mod xml;
 
 use automat_base::{Code, Diagnostic, FileId, Interner, Span};
@@ -48,7 +49,7 @@ pub fn is_plcopen_file(name: &str) -> bool {
 }
 
 /// Caps the tree a file may build (a fuzzed file cannot exhaust memory).
-const NODES_LIMIT: u32 = 4_000_000;
+pub(crate) const NODES_LIMIT: u32 = 4_000_000;
 
 /// The Structured Text an XML file is read as (for tests and for looking at
 /// what an LD or FBD body means), with the importer's own diagnostics.
