@@ -168,9 +168,9 @@ pub(crate) fn iso_duration(s: &str) -> Option<String> {
     if !num.is_empty() || ns > i64::MAX as u128 {
         return None;
     }
-    Some(if ns % 1_000_000 == 0 {
+    Some(if ns.is_multiple_of(1_000_000) {
         format!("T#{}ms", ns / 1_000_000)
-    } else if ns % 1_000 == 0 {
+    } else if ns.is_multiple_of(1_000) {
         format!("T#{}us", ns / 1_000)
     } else {
         format!("T#{ns}ns")
