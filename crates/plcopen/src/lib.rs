@@ -291,14 +291,20 @@ pub fn name_elements(file: FileId, src: &str, diags: &mut [Diagnostic]) {
             id.trim().to_string(),
         ));
     }
+    // Document order is start order. Elements of a body are siblings; only
+    // an action block holds elements with a localId (its actions), so the
+    // innermost element holding an offset is among the last few that start
+    // before it: a bounded look back keeps this linear in the diagnostics.
+    const LOOK_BACK: usize = 8;
     for d in diags.iter_mut().filter(|d| d.span.file == file) {
         if d.message.starts_with("POU `") {
             continue;
         }
         let at = d.span.start as usize;
-        let inner = elems
+        let upto = elems.partition_point(|(s, _, _, _)| *s <= at);
+        let inner = elems[upto.saturating_sub(LOOK_BACK)..upto]
             .iter()
-            .filter(|(s, e, _, _)| *s <= at && at < *e)
+            .filter(|(_, e, _, _)| at < *e)
             .min_by_key(|(s, e, _, _)| e - s);
         if let Some((_, _, pou, id)) = inner {
             d.message = format!("POU `{pou}`, localId {id}: {}", d.message);
