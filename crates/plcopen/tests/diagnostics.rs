@@ -218,6 +218,54 @@ fn element_without_local_id() {
 }
 
 #[test]
+fn wired_sfc_conditions() {
+    // Step S0, a transition back to S0 whose condition is wired to `cond`.
+    let chart = |cond: &str| {
+        program(
+            BOOLS,
+            "SFC",
+            &format!(
+                r#"<step localId="1" name="S0" initialStep="true"><connectionPointIn><connection refLocalId="2"/></connectionPointIn></step>
+<transition localId="2"><connectionPointIn><connection refLocalId="1"/></connectionPointIn><condition><connectionPointIn><connection refLocalId="3"/></connectionPointIn></condition></transition>
+{cond}"#
+            ),
+        )
+    };
+    expect(
+        &chart(
+            r#"<contact localId="3" edge="rising"><connectionPointIn/><variable>a</variable></contact>"#,
+        ),
+        &["7:1: error[E171]: POU `P`, localId 3: an edge contact in a transition condition"],
+    );
+    expect(
+        &chart(r#"<block localId="3" typeName="AND"/>"#),
+        &[
+            "7:1: error[E171]: POU `P`, localId 3: `block` in a transition condition",
+            "7:1: error[E171]: POU `P`: `block` in an SFC body is not supported",
+        ],
+    );
+    expect(
+        &chart(
+            r#"<contact localId="3"><connectionPointIn><connection refLocalId="3"/></connectionPointIn><variable>a</variable></contact>"#,
+        ),
+        &["7:1: error[E174]: POU `P`, localId 3: a transition condition's wires loop"],
+    );
+    expect(
+        &chart(r#"<contact localId="4"><connectionPointIn/><variable>a</variable></contact>"#),
+        &["6:103: error[E172]: POU `P`: a transition condition's wire names localId 3"],
+    );
+    expect(
+        &chart(r#"<contact localId="3"><connectionPointIn/><variable>a</variable></contact>"#),
+        &["7:22: error[E173]: POU `P`: a transition condition's wire is not connected"],
+    );
+    // A condition of the wrong type: the checker's error at the wire.
+    expect(
+        &chart(r#"<inVariable localId="3"><expression>n</expression></inVariable>"#),
+        &["6:103: error[E032]: POU `P`, localId 2: the IF condition must be BOOL, found INT"],
+    );
+}
+
+#[test]
 fn st_body_errors_keep_their_position() {
     let t = format!(
         "{HEAD}<pou name=\"P\" pouType=\"program\"><interface><localVars>{BOOLS}</localVars></interface>\n<body><ST><xhtml:p xmlns:xhtml=\"http://www.w3.org/1999/xhtml\"><![CDATA[q := a;\n  n := nope;]]></xhtml:p></ST></body></pou>{TAIL}"
