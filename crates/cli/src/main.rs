@@ -31,6 +31,7 @@ mod cmd_online;
 mod cmd_passwd;
 mod cmd_run;
 mod cmd_test;
+mod draw;
 mod engines;
 mod files;
 mod live;
@@ -63,6 +64,7 @@ enum Command {
     Run(Box<cmd_run::RunArgs>),
     Test(cmd_test::TestArgs),
     Plot(plot::PlotArgs),
+    Draw(draw::DrawArgs),
     Passwd(cmd_passwd::PasswdArgs),
 }
 
@@ -91,6 +93,7 @@ fn main() -> ExitCode {
         Command::Run(args) => cmd_run::run_cmd(&args),
         Command::Test(args) => cmd_test::run(&args),
         Command::Plot(args) => plot::run(&args),
+        Command::Draw(args) => draw::run(&args),
         Command::Passwd(args) => cmd_passwd::run(&args),
     };
     ExitCode::from(match outcome {

@@ -134,3 +134,35 @@ fn export_writes_a_project_that_runs_the_same() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("error[E178]"));
 }
+
+#[test]
+fn draw_writes_svg_and_png() {
+    let d = project("draw");
+    let svg = d.join("latch.svg");
+    let png = d.join("latch.png");
+    let p = d.to_string_lossy().into_owned();
+    for out in [&svg, &png] {
+        let o = automat(&["draw", &p, "--pou", "latch", "-o", &out.to_string_lossy()]);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    let text = std::fs::read_to_string(&svg).unwrap_or_default();
+    assert!(text.starts_with("<svg "), "{text}");
+    assert_eq!(text.matches("class=\"text-contact\"").count(), 3);
+    assert_eq!(text.matches("class=\"text-coil\"").count(), 1);
+    let bytes = std::fs::read(&png).unwrap_or_default();
+    assert!(bytes.starts_with(b"\x89PNG"));
+    // An ST POU, an unknown POU, a bad extension.
+    let o = automat(&["draw", &p, "--pou", "Main", "-o", &svg.to_string_lossy()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("textual body without an SFC chart"));
+    let o = automat(&["draw", &p, "--pou", "Nope", "-o", &svg.to_string_lossy()]);
+    assert_eq!(o.status.code(), Some(1));
+    let bad = d.join("latch.gif").to_string_lossy().into_owned();
+    let o = automat(&["draw", &p, "--pou", "Latch", "-o", &bad]);
+    assert_eq!(o.status.code(), Some(2));
+}

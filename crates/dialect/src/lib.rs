@@ -141,6 +141,16 @@ pub fn add_libraries(map: &mut SourceMap, dialects: &[Dialect]) {
     }
 }
 
+/// The checker's diagnostics inside an LD, FBD or SFC element of a PLCopen
+/// file name the element's POU and `localId`, as the importer's do.
+fn name_xml_elements(sources: &SourceMap, diags: &mut [Diagnostic]) {
+    for (id, file) in sources.files() {
+        if automat_plcopen::is_plcopen_file(&file.name) {
+            automat_plcopen::name_elements(id, &file.text, diags);
+        }
+    }
+}
+
 /// Parses every file of `sources`, applies the rewrites of `dialects`, and
 /// checks the project; parse, rewrite and check diagnostics, sorted by file
 /// and position. `*.xml` files are PLCopen TC6 XML, read by
@@ -215,6 +225,7 @@ pub fn check_sources(
         let mut analysis = automat_sema::check(&units, interner);
         diags.append(&mut analysis.diagnostics);
         diags.sort_by_key(|d: &Diagnostic| (d.span.file, d.span.start, d.span.end));
+        name_xml_elements(sources, &mut diags);
         analysis.diagnostics = diags;
         return (units, analysis);
     }
@@ -271,6 +282,7 @@ pub fn check_sources(
     let mut analysis = automat_sema::check(&units, interner);
     diags.append(&mut analysis.diagnostics);
     diags.sort_by_key(|d: &Diagnostic| (d.span.file, d.span.start, d.span.end));
+    name_xml_elements(sources, &mut diags);
     analysis.diagnostics = diags;
     (units, analysis)
 }

@@ -71,7 +71,24 @@ impl Imp<'_> {
             first = false;
             self.gen(prop, t);
             self.gen(" := ", t);
-            self.expr_text(&v.trimmed(), t, false);
+            let v = v.trimmed();
+            // CODESYS writes the schema's xsd:duration (`PT0.01S`).
+            if attr == "interval" && v.text.starts_with('P') {
+                match iso_duration(&v.text) {
+                    Some(lit) => self.gen(&lit, t),
+                    None => {
+                        let sp = v.span(self.file);
+                        self.error(
+                            Code::E171,
+                            sp,
+                            format!("a task interval `{}` that is neither a TIME literal nor an xsd:duration of hours, minutes and seconds", v.text),
+                        );
+                        self.gen("T#0s", t);
+                    }
+                }
+                continue;
+            }
+            self.expr_text(&v, t, false);
         }
         if first {
             self.gen("PRIORITY := 0", t);
@@ -105,6 +122,85 @@ impl Imp<'_> {
                 sp,
                 "connections of a program instance are not supported",
             );
+        }
+    }
+}
+
+/// An xsd:duration `PT[nH][nM][n[.f]S]` (the form CODESYS writes for a
+/// task's interval) as a TIME literal; None for any other form (years,
+/// months and days are no task interval).
+pub(crate) fn iso_duration(s: &str) -> Option<String> {
+    let rest = s.strip_prefix("PT")?;
+    if rest.is_empty() {
+        return None;
+    }
+    let mut ns: u128 = 0;
+    let mut num = String::new();
+    for c in rest.chars() {
+        match c {
+            '0'..='9' | '.' => num.push(c),
+            'H' | 'M' | 'S' if !num.is_empty() => {
+                let (int, frac) = num.split_once('.').unwrap_or((num.as_str(), ""));
+                if int.is_empty() && frac.is_empty() || frac.contains('.') || frac.len() > 9 {
+                    return None;
+                }
+                let unit: u128 = match c {
+                    'H' => 3_600_000_000_000,
+                    'M' => 60_000_000_000,
+                    _ => 1_000_000_000,
+                };
+                let whole: u128 = if int.is_empty() { 0 } else { int.parse().ok()? };
+                let f: u128 = if frac.is_empty() {
+                    0
+                } else {
+                    let digits: u128 = frac.parse().ok()?;
+                    digits * 10u128.pow(9 - frac.len() as u32)
+                };
+                if c != 'S' && f != 0 {
+                    return None;
+                }
+                ns = ns.checked_add(whole.checked_mul(unit)?)?.checked_add(f)?;
+                num.clear();
+            }
+            _ => return None,
+        }
+    }
+    if !num.is_empty() || ns > i64::MAX as u128 {
+        return None;
+    }
+    Some(if ns.is_multiple_of(1_000_000) {
+        format!("T#{}ms", ns / 1_000_000)
+    } else if ns.is_multiple_of(1_000) {
+        format!("T#{}us", ns / 1_000)
+    } else {
+        format!("T#{ns}ns")
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::iso_duration;
+
+    #[test]
+    fn xsd_durations_of_task_intervals() {
+        let cases = [
+            ("PT0.01S", Some("T#10ms")),
+            ("PT1S", Some("T#1000ms")),
+            ("PT1M30S", Some("T#90000ms")),
+            ("PT1H", Some("T#3600000ms")),
+            ("PT0.000001S", Some("T#1us")),
+            ("PT0.000000001S", Some("T#1ns")),
+            ("PT.5S", Some("T#500ms")),
+            ("P1D", None),
+            ("PT", None),
+            ("PT1.5M", None),
+            ("PT1", None),
+            ("PT1..2S", None),
+            ("PT0.0000000001S", None),
+            ("PT99999999999999999999999999H", None),
+        ];
+        for (s, want) in cases {
+            assert_eq!(iso_duration(s).as_deref(), want, "{s}");
         }
     }
 }

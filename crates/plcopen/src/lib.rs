@@ -30,6 +30,7 @@ pub(crate) mod out;
 mod pou;
 mod remap;
 mod sfc;
+pub mod sheet;
 pub mod xml;
 
 use automat_base::{Code, Diagnostic, FileId, Interner, Span};
@@ -48,7 +49,7 @@ pub fn is_plcopen_file(name: &str) -> bool {
 }
 
 /// Caps the tree a file may build (a fuzzed file cannot exhaust memory).
-const NODES_LIMIT: u32 = 4_000_000;
+pub(crate) const NODES_LIMIT: u32 = 4_000_000;
 
 /// The Structured Text an XML file is read as (for tests and for looking at
 /// what an LD or FBD body means), with the importer's own diagnostics.
@@ -247,6 +248,66 @@ impl<'s> Imp<'s> {
                     self.configuration(c);
                 }
             }
+        }
+    }
+}
+
+/// Names the LD, FBD or SFC element each diagnostic of `file` points into:
+/// a diagnostic of the checker (an unknown name, a type mismatch at a pin)
+/// whose span lies inside an element with a `localId` gets the prefix
+/// "POU `P`, localId N: " the importer's own diagnostics have. Diagnostics
+/// of other files, outside graphical elements, or already naming a POU are
+/// left as they are.
+pub fn name_elements(file: FileId, src: &str, diags: &mut [Diagnostic]) {
+    if !diags.iter().any(|d| d.span.file == file) {
+        return;
+    }
+    let opts = ParsingOptions {
+        allow_dtd: false,
+        nodes_limit: NODES_LIMIT,
+        ..ParsingOptions::default()
+    };
+    let Ok(doc) = Document::parse_with_options(src, opts) else {
+        return;
+    };
+    // (start, end, pou, localId) of every element with a localId in a body.
+    let mut elems: Vec<(usize, usize, String, String)> = Vec::new();
+    for n in doc.descendants().filter(|n| n.is_element()) {
+        let Some(id) = xml::attr_str(n, "localId") else {
+            continue;
+        };
+        let Some(pou) = n
+            .ancestors()
+            .find(|a| xml::is(*a, "pou"))
+            .and_then(|p| xml::attr_str(p, "name"))
+        else {
+            continue;
+        };
+        let r = n.range();
+        elems.push((
+            r.start,
+            r.end,
+            pou.trim().to_string(),
+            id.trim().to_string(),
+        ));
+    }
+    // Document order is start order. Elements of a body are siblings; only
+    // an action block holds elements with a localId (its actions), so the
+    // innermost element holding an offset is among the last few that start
+    // before it: a bounded look back keeps this linear in the diagnostics.
+    const LOOK_BACK: usize = 8;
+    for d in diags.iter_mut().filter(|d| d.span.file == file) {
+        if d.message.starts_with("POU `") {
+            continue;
+        }
+        let at = d.span.start as usize;
+        let upto = elems.partition_point(|(s, _, _, _)| *s <= at);
+        let inner = elems[upto.saturating_sub(LOOK_BACK)..upto]
+            .iter()
+            .filter(|(_, e, _, _)| at < *e)
+            .min_by_key(|(s, e, _, _)| e - s);
+        if let Some((_, _, pou, id)) = inner {
+            d.message = format!("POU `{pou}`, localId {id}: {}", d.message);
         }
     }
 }

@@ -6,8 +6,8 @@
 //! with the steps found by following its wires back (through selection
 //! divergences and simultaneous convergences) and forward (through
 //! simultaneous divergences, selection convergences and jumps to a step).
-//! Conditions are inline ST or IL, or a reference to a transition of the
-//! POU; actions are the POU's actions or inline bodies of an action block
+//! Conditions are inline ST or IL, a reference to a transition of the
+//! POU, or a wire to input variables and contacts in the body (`wired`); actions are the POU's actions or inline bodies of an action block
 //! (named `__ab<localId>_<n>`).
 
 use crate::xml::{self, Text};
@@ -85,6 +85,8 @@ impl Imp<'_> {
                 | "actionBlock"
                 | "comment"
                 | "addData" => {}
+                // Read through the wired condition of a transition.
+                "inVariable" | "contact" | "leftPowerRail" => {}
                 other => {
                     let sp = self.span(e);
                     self.error(
@@ -296,6 +298,13 @@ impl Imp<'_> {
             xml::child(t, "body")
                 .and_then(|b| xml::elements(b).find(|l| matches!(l.tag_name().name(), "ST" | "IL")))
         });
+        let wired = cond.and_then(|c| xml::child(c, "connectionPointIn"));
+        if let (None, None, Some(cp)) = (inline, referenced, wired) {
+            self.gen(" := ", e);
+            self.wired(cp, w, pou_name, 0);
+            self.gen(";\nEND_TRANSITION\n", e);
+            return;
+        }
         match inline.or(referenced) {
             Some(lang) if lang.tag_name().name() == "IL" => {
                 self.gen(" :\n", e);
@@ -321,9 +330,118 @@ impl Imp<'_> {
                 self.error(
                     Code::E171,
                     sp,
-                    format!("POU `{pou_name}`, localId {id}: the transition's condition is neither inline ST/IL nor a reference to a transition of the POU"),
+                    format!("POU `{pou_name}`, localId {id}: the transition's condition is neither inline ST/IL, a reference to a transition of the POU, nor a wire"),
                 );
                 self.gen(" := FALSE;\nEND_TRANSITION\n", e);
+            }
+        }
+    }
+
+    /// A condition given by a wire (Beremiz): the OR of the wires into `cp`,
+    /// each an input variable (`NOT` when negated), a left power rail
+    /// (TRUE) or a normally open / negated contact (its input AND its
+    /// variable). Edge contacts need a memory a condition cannot keep, and
+    /// blocks are not read here: E171.
+    fn wired(&mut self, cp: Node, w: &Wires, pou_name: &str, depth: u32) {
+        let conns: Vec<u32> = xml::children(cp, "connection")
+            .filter_map(|c| xml::attr_str(c, "refLocalId").and_then(|v| v.trim().parse().ok()))
+            .collect();
+        if conns.is_empty() {
+            let sp = self.span(cp);
+            self.error(
+                Code::E173,
+                sp,
+                format!("POU `{pou_name}`: a transition condition's wire is not connected"),
+            );
+            self.gen("FALSE", cp);
+            return;
+        }
+        self.gen("(", cp);
+        for (k, id) in conns.into_iter().enumerate() {
+            if k > 0 {
+                self.gen(" OR ", cp);
+            }
+            self.wired_source(cp, id, w, pou_name, depth + 1);
+        }
+        self.gen(")", cp);
+    }
+
+    fn wired_source(&mut self, at: Node, id: u32, w: &Wires, pou_name: &str, depth: u32) {
+        /// Deeper than any drawn condition: a loop of wires.
+        const MAX_DEPTH: u32 = 60;
+        let Some(&n) = w.by_id.get(&id) else {
+            let sp = self.span(at);
+            self.error(
+                Code::E172,
+                sp,
+                format!("POU `{pou_name}`: a transition condition's wire names localId {id}, which the body does not have"),
+            );
+            self.gen("FALSE", at);
+            return;
+        };
+        if depth > MAX_DEPTH {
+            let sp = self.span(n);
+            self.error(
+                Code::E174,
+                sp,
+                format!("POU `{pou_name}`, localId {id}: a transition condition's wires loop (or chain more than {MAX_DEPTH} elements)"),
+            );
+            self.gen("FALSE", n);
+            return;
+        }
+        let text_of = |imp: &Imp, child: &str| {
+            xml::child(n, child).map(|c| xml::content(imp.src, c).trimmed())
+        };
+        match n.tag_name().name() {
+            "leftPowerRail" => self.gen("TRUE", n),
+            "inVariable" => {
+                if xml::flag(n, "negated") {
+                    self.gen("NOT ", n);
+                }
+                let t = text_of(self, "expression").unwrap_or_default();
+                self.expr_text(&t, n, true);
+            }
+            "contact" if xml::attr_str(n, "edge").is_some_and(|e| e.trim() != "none") => {
+                let sp = self.span(n);
+                self.error(
+                    Code::E171,
+                    sp,
+                    format!("POU `{pou_name}`, localId {id}: an edge contact in a transition condition (a condition keeps no memory)"),
+                );
+                self.gen("FALSE", n);
+            }
+            "contact" => {
+                self.gen("(", n);
+                match xml::child(n, "connectionPointIn") {
+                    Some(cp) => self.wired(cp, w, pou_name, depth),
+                    None => {
+                        let sp = self.span(n);
+                        self.error(
+                            Code::E175,
+                            sp,
+                            format!(
+                                "POU `{pou_name}`, localId {id}: nothing is connected on the left"
+                            ),
+                        );
+                        self.gen("FALSE", n);
+                    }
+                }
+                self.gen(" AND ", n);
+                if xml::flag(n, "negated") {
+                    self.gen("NOT ", n);
+                }
+                let t = text_of(self, "variable").unwrap_or_default();
+                self.expr_text(&t, n, true);
+                self.gen(")", n);
+            }
+            other => {
+                let sp = self.span(n);
+                self.error(
+                    Code::E171,
+                    sp,
+                    format!("POU `{pou_name}`, localId {id}: `{other}` in a transition condition (input variables, contacts and a left power rail are read)"),
+                );
+                self.gen("FALSE", n);
             }
         }
     }

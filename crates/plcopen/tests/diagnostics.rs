@@ -165,8 +165,103 @@ fn type_mismatch_at_a_pin_points_at_the_wire() {
     );
     let report = check(&t);
     assert!(
-        report.contains("t.xml:6:41: error[E031]: operator `AND` is not defined for BOOL and INT"),
+        report.contains("t.xml:6:41: error[E031]: POU `P`, localId 2: operator `AND` is not defined for BOOL and INT"),
         "{report}"
+    );
+}
+
+#[test]
+fn type_mismatch_at_a_block_pin_names_the_block() {
+    // A BOOL wired to ADD's IN2: the checker's error at the wire names the block.
+    let t = program(
+        BOOLS,
+        "FBD",
+        r#"<inVariable localId="1"><connectionPointOut/><expression>n</expression></inVariable>
+<inVariable localId="2"><connectionPointOut/><expression>a</expression></inVariable>
+<block localId="3" typeName="ADD"><inputVariables><variable formalParameter="IN1"><connectionPointIn><connection refLocalId="1"/></connectionPointIn></variable><variable formalParameter="IN2"><connectionPointIn><connection refLocalId="2"/></connectionPointIn></variable></inputVariables><outputVariables><variable formalParameter="OUT"/></outputVariables></block>
+<outVariable localId="4"><connectionPointIn><connection refLocalId="3" formalParameter="OUT"/></connectionPointIn><expression>n</expression></outVariable>"#,
+    );
+    // 7:212 is IN2's `connection` element.
+    expect(
+        &t,
+        &["7:212: error[E052]: POU `P`, localId 3: the arguments of `ADD` have incompatible types INT and BOOL"],
+    );
+}
+
+#[test]
+fn unknown_name_in_a_contact_names_the_contact() {
+    let t = program(
+        BOOLS,
+        "LD",
+        r#"<leftPowerRail localId="1"><connectionPointOut/></leftPowerRail>
+<contact localId="2"><connectionPointIn><connection refLocalId="1"/></connectionPointIn><connectionPointOut/><variable>nope</variable></contact>
+<coil localId="3"><connectionPointIn><connection refLocalId="2"/></connectionPointIn><variable>q</variable></coil>"#,
+    );
+    expect(
+        &t,
+        &["6:120: error[E020]: POU `P`, localId 2: unknown variable `nope`"],
+    );
+}
+
+#[test]
+fn element_without_local_id() {
+    let t = program(
+        BOOLS,
+        "LD",
+        r#"<leftPowerRail localId="1"><connectionPointOut/></leftPowerRail>
+<contact><connectionPointIn><connection refLocalId="1"/></connectionPointIn><variable>a</variable></contact>"#,
+    );
+    expect(
+        &t,
+        &["6:1: error[E171]: POU `P`: `contact` without a numeric `localId`"],
+    );
+}
+
+#[test]
+fn wired_sfc_conditions() {
+    // Step S0, a transition back to S0 whose condition is wired to `cond`.
+    let chart = |cond: &str| {
+        program(
+            BOOLS,
+            "SFC",
+            &format!(
+                r#"<step localId="1" name="S0" initialStep="true"><connectionPointIn><connection refLocalId="2"/></connectionPointIn></step>
+<transition localId="2"><connectionPointIn><connection refLocalId="1"/></connectionPointIn><condition><connectionPointIn><connection refLocalId="3"/></connectionPointIn></condition></transition>
+{cond}"#
+            ),
+        )
+    };
+    expect(
+        &chart(
+            r#"<contact localId="3" edge="rising"><connectionPointIn/><variable>a</variable></contact>"#,
+        ),
+        &["7:1: error[E171]: POU `P`, localId 3: an edge contact in a transition condition"],
+    );
+    expect(
+        &chart(r#"<block localId="3" typeName="AND"/>"#),
+        &[
+            "7:1: error[E171]: POU `P`, localId 3: `block` in a transition condition",
+            "7:1: error[E171]: POU `P`: `block` in an SFC body is not supported",
+        ],
+    );
+    expect(
+        &chart(
+            r#"<contact localId="3"><connectionPointIn><connection refLocalId="3"/></connectionPointIn><variable>a</variable></contact>"#,
+        ),
+        &["7:1: error[E174]: POU `P`, localId 3: a transition condition's wires loop"],
+    );
+    expect(
+        &chart(r#"<contact localId="4"><connectionPointIn/><variable>a</variable></contact>"#),
+        &["6:103: error[E172]: POU `P`: a transition condition's wire names localId 3"],
+    );
+    expect(
+        &chart(r#"<contact localId="3"><connectionPointIn/><variable>a</variable></contact>"#),
+        &["7:22: error[E173]: POU `P`: a transition condition's wire is not connected"],
+    );
+    // A condition of the wrong type: the checker's error at the wire.
+    expect(
+        &chart(r#"<inVariable localId="3"><expression>n</expression></inVariable>"#),
+        &["6:103: error[E032]: POU `P`, localId 2: the IF condition must be BOOL, found INT"],
     );
 }
 

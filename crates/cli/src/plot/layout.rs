@@ -59,6 +59,21 @@ pub enum Shape {
         x2: f64,
         y2: f64,
     },
+    /// A 1.5 px black outline (drawings: blocks, steps, variables).
+    Rect {
+        class: &'static str,
+        x: f64,
+        y: f64,
+        w: f64,
+        h: f64,
+    },
+    /// A 1.5 px black circle outline (drawings: negated pins).
+    Circle {
+        class: &'static str,
+        cx: f64,
+        cy: f64,
+        r: f64,
+    },
     /// Black text whose baseline is at `y`.
     Text {
         class: &'static str,

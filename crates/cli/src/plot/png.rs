@@ -5,7 +5,7 @@
 
 use super::csv::Trace;
 use super::font;
-use super::layout::{layout, Anchor, Ink, Seg, Shape};
+use super::layout::{layout, Anchor, Diagram, Ink, Seg, Shape};
 use tiny_skia::{
     Color, Paint, Path, PathBuilder, Pixmap, PremultipliedColorU8, Rect, Stroke, Transform,
 };
@@ -91,7 +91,11 @@ pub const MAX_HEIGHT: u32 = 16_384;
 
 /// The diagram of `trace` as a pixmap (white page).
 pub fn raster(trace: &Trace) -> Result<Pixmap, String> {
-    let d = layout(trace);
+    raster_diagram(&layout(trace))
+}
+
+/// Any diagram (a timing diagram, a drawing of `automat draw`) as a pixmap.
+pub fn raster_diagram(d: &Diagram) -> Result<Pixmap, String> {
     let (w, h) = (d.width.ceil() as u32, d.height.ceil() as u32);
     // Pixmap::new takes up to 2 GB (i32 bytes); a trace of a few thousand
     // columns asked for that much. 16384 rows (59 MB: 200 to 450 rows of the
@@ -119,6 +123,30 @@ pub fn raster(trace: &Trace) -> Result<Pixmap, String> {
                     );
                 }
             }
+            Shape::Rect { x, y, w, h, .. } => {
+                if let Some(r) = Rect::from_xywh(*x as f32, *y as f32, *w as f32, *h as f32) {
+                    pm.fill_rect(r, &paint(255, 255, 255), Transform::identity(), None);
+                    stroke(
+                        &mut pm,
+                        Some(PathBuilder::from_rect(r)),
+                        &paint(0, 0, 0),
+                        1.5,
+                    );
+                }
+            }
+            Shape::Circle { cx, cy, r, .. } => {
+                let c = PathBuilder::from_circle(*cx as f32, *cy as f32, *r as f32);
+                if let Some(c) = &c {
+                    pm.fill_path(
+                        c,
+                        &paint(255, 255, 255),
+                        tiny_skia::FillRule::Winding,
+                        Transform::identity(),
+                        None,
+                    );
+                }
+                stroke(&mut pm, c, &paint(0, 0, 0), 1.5);
+            }
             Shape::Line { x1, y1, x2, y2, .. } => {
                 // A 1 px line on pixel centres is one sharp row or column.
                 let mut pb = PathBuilder::new();
@@ -141,6 +169,13 @@ pub fn raster(trace: &Trace) -> Result<Pixmap, String> {
 /// The diagram of `trace` as PNG bytes.
 pub fn render(trace: &Trace) -> Result<Vec<u8>, String> {
     raster(trace)?
+        .encode_png()
+        .map_err(|e| format!("cannot encode the PNG: {e}"))
+}
+
+/// Any diagram as PNG bytes.
+pub fn encode(d: &Diagram) -> Result<Vec<u8>, String> {
+    raster_diagram(d)?
         .encode_png()
         .map_err(|e| format!("cannot encode the PNG: {e}"))
 }

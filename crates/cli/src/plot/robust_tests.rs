@@ -97,7 +97,10 @@ fn finite_shapes(trace: &Trace) -> Result<(), String> {
                     }
                 }
             }
-            Shape::Band { x, y, w, h } => xs.extend([*x, *y, *w, *h]),
+            Shape::Band { x, y, w, h } | Shape::Rect { x, y, w, h, .. } => {
+                xs.extend([*x, *y, *w, *h])
+            }
+            Shape::Circle { cx, cy, r, .. } => xs.extend([*cx, *cy, *r]),
             Shape::Line { x1, y1, x2, y2, .. } => xs.extend([*x1, *y1, *x2, *y2]),
             Shape::Text { x, y, .. } => xs.extend([*x, *y]),
         }

@@ -5,7 +5,7 @@
 //! with their value written inside; a time axis with round ticks below.
 
 use super::csv::Trace;
-use super::layout::{layout, Anchor, Ink, Seg, Shape};
+use super::layout::{layout, Anchor, Diagram, Ink, Seg, Shape};
 use std::fmt::Write;
 
 #[cfg(test)]
@@ -62,6 +62,21 @@ fn shape(out: &mut String, s: &Shape) {
             n(*w),
             n(*h)
         ),
+        Shape::Rect { class, x, y, w, h } => writeln!(
+            out,
+            r#"<rect class="{class}" x="{}" y="{}" width="{}" height="{}" fill="white" stroke="black" stroke-width="1.5"/>"#,
+            n(*x),
+            n(*y),
+            n(*w),
+            n(*h)
+        ),
+        Shape::Circle { class, cx, cy, r } => writeln!(
+            out,
+            r#"<circle class="{class}" cx="{}" cy="{}" r="{}" fill="white" stroke="black" stroke-width="1.5"/>"#,
+            n(*cx),
+            n(*cy),
+            n(*r)
+        ),
         Shape::Line {
             class,
             x1,
@@ -102,7 +117,11 @@ fn shape(out: &mut String, s: &Shape) {
 
 /// The diagram of `trace` (all its columns, in order).
 pub fn render(trace: &Trace) -> String {
-    let d = layout(trace);
+    diagram(&layout(trace))
+}
+
+/// Any diagram (a timing diagram, a drawing of `automat draw`) as SVG.
+pub fn diagram(d: &Diagram) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,

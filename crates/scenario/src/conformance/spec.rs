@@ -91,7 +91,14 @@ fn parse_expect(text: &str, at: Option<u64>, line: usize) -> Result<Expect, Stri
 /// The text of the header: the first comment, which must open the file.
 pub(crate) fn header(source: &str) -> Result<(&str, usize), String> {
     let start = source.trim_start();
-    // A PLCopen XML case carries the header in its first XML comment.
+    // A PLCopen XML case carries the header in its first XML comment, after
+    // the XML declaration when it has one (files saved by Beremiz, CODESYS).
+    let start = match start.strip_prefix("<?xml") {
+        Some(rest) => rest
+            .find("?>")
+            .map_or(start, |e| rest[e + 2..].trim_start()),
+        None => start,
+    };
     let start = start.strip_prefix("<!--").map_or(start, str::trim_start);
     let skipped = source.len() - start.len();
     let body = start
@@ -178,6 +185,14 @@ pub fn parse(source: &str) -> Result<Spec, String> {
 }
 
 #[cfg(test)]
+#[test]
+fn header_after_an_xml_declaration() {
+    let src = "<?xml version='1.0' encoding='utf-8'?>\n<!--(* cycles: 2\n   expect: p.x = 1\n*)-->\n<project/>";
+    let s = parse(src).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.cycles, 2);
+    assert_eq!(s.expects[0].line, 3);
+}
+
 #[test]
 fn header_syntax() {
     let src = "\n(* title: whatever\n   cycles: 3\n   cycle-time: T#20ms\n   expect: Main.q = TRUE\n   expect-at 2: a[1].x = 'a = b'  -- note\n   expect-fault: division-by-zero at 12 in cycle 3\n   known-bug: E1\n*)\nPROGRAM Main END_PROGRAM";
