@@ -74,7 +74,7 @@ fn errors_exit_1_with_location_code_and_caret() {
     let first = text.lines().next().unwrap_or("");
     assert!(
         first.ends_with(
-            "bad.st:6:10: error[E030]: cannot assign a value of type DINT to `i` of type INT"
+            "bad.st:6:10: error[E030]: cannot assign a value of type DINT to `i` of type INT; convert it with `DINT_TO_INT(...)`"
         ),
         "{text}"
     );

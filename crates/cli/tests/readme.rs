@@ -108,7 +108,7 @@ fn the_first_program_of_the_readme_runs_as_shown() {
     let first = stdout(&bad).lines().next().unwrap_or_default().to_string();
     assert_eq!(
         first,
-        "blink.st:16:9: error[E020]: unknown variable `lamb` in `Main`"
+        "blink.st:16:9: error[E020]: unknown variable `lamb` in `Main`; did you mean `lamp`?"
     );
     assert!(readme.contains(&first.replace('\n', " ")));
     let _ = std::fs::remove_dir_all(&dir);
