@@ -9,4 +9,5 @@ pub mod parse;
 pub mod run;
 
 pub use parse::parse;
-pub use run::{run, run_on, Failure, Outcome};
+pub use check::NoPlant;
+pub use run::{describe, prepare, run, run_on, Failure, Judge, Outcome, Prepared};
