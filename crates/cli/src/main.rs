@@ -33,6 +33,7 @@ mod cmd_run;
 mod cmd_test;
 mod engines;
 mod files;
+mod junit;
 mod live;
 mod out;
 mod plot;
