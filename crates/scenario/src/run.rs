@@ -376,6 +376,14 @@ impl Judge {
         std::mem::swap(&mut self.vals, &mut self.prev);
     }
 
+    /// The failures so far (a run that stopped early: what was still open
+    /// is not judged), in time order.
+    pub fn failures(self) -> Vec<Failure> {
+        let mut f = self.failures;
+        f.sort_by_key(|f| f.at_ns);
+        f
+    }
+
     /// Judges what is still open when the run ends (its last scan was at
     /// `last_ns`) and returns every failure, in time order.
     pub fn finish(mut self, image: &[u8], sim: &Sim) -> Vec<Failure> {
