@@ -194,6 +194,8 @@ pub fn prepare(scope: &Scope, scn: &Scenario) -> Result<Prepared, Vec<Diagnostic
         }
     }
     if !errors.is_empty() {
+        // In the file's order (expectations were checked first).
+        errors.sort_by_key(|d| d.span.start);
         return Err(errors);
     }
     let n = refs.len();
