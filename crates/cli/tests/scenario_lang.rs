@@ -219,3 +219,33 @@ fn junit_report_exit_codes_and_jobs() {
     // A bad --jobs is a command-line error.
     assert_eq!(automat(&["test", LIGHT, "--jobs", "0"]).status.code(), Some(2));
 }
+
+/// The dialects' own addresses name variables in scenarios: PL7 steps
+/// (`%X0`, `%X0.T`) and I/O (`%I1.0`), Festo FST operands (`I0.1`, a bit of
+/// the input word at `%IX0.1`).
+#[test]
+fn scenarios_take_the_dialects_addresses() {
+    let dir = tmp("dialects");
+    let cases = [
+        (
+            "examples/trains",
+            "duration 1s\nexpect at 0s %X0 AND %X10 AND %X20 AND NOT %X1\nexpect at 500ms %X0.T >= 490ms AND %X0.T <= 500ms\nexpect always %IX1.0 = %I1.0\n",
+        ),
+        (
+            "examples/festo-distribution-stl",
+            "duration 1s\nexpect always I0.1 = %IX0.1 AND O0.0 = %QX0.0 AND IW0 = %IW0\n",
+        ),
+    ];
+    for (k, (project, scn)) in cases.iter().enumerate() {
+        let path = dir.join(format!("{k}.scn"));
+        std::fs::write(&path, scn).expect("write");
+        let shown = path.display().to_string();
+        let out = automat(&["run", project, "--scenario", &shown]);
+        assert_eq!(out.status.code(), Some(0), "{project}: {}", text(&out.stderr));
+        assert!(
+            text(&out.stderr).ends_with(&format!("scenario {shown}: every expectation held\n")),
+            "{}",
+            text(&out.stderr)
+        );
+    }
+}

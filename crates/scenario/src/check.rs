@@ -222,7 +222,13 @@ impl Scope<'_> {
                 },
             });
         }
-        let place = resolve(self.program, &n.text).map_err(|e| {
+        let place = resolve(self.program, &n.text)
+            .or_else(|e| {
+                pl7_object(&n.text)
+                    .and_then(|alias| resolve(self.program, &alias).ok())
+                    .ok_or(e)
+            })
+            .map_err(|e| {
             if self.plantless() {
                 unknown(format!("`{}` is no variable of the program: {e}", n.text))
             } else {
@@ -679,6 +685,26 @@ impl Scope<'_> {
             )],
         })
     }
+}
+
+/// The variable a PL7 object stands for in a program of the `pl7` dialect
+/// (`crates/dialect/src/pl7`): a step's activity `%Xi` and time `%Xi.T`
+/// are the global mirrors `__pl7_x_i` / `__pl7_t_i`, a system bit `%Si` and
+/// word `%SWi` the globals `_Si` / `_SWi`.
+fn pl7_object(text: &str) -> Option<String> {
+    let up = text.to_ascii_uppercase();
+    let rest = up.strip_prefix('%')?;
+    let digits = |s: &str| !s.is_empty() && s.len() <= 5 && s.bytes().all(|b| b.is_ascii_digit());
+    if let Some(step) = rest.strip_prefix('X') {
+        let (n, time) = match step.split_once('.') {
+            Some((n, "T")) => (n, true),
+            Some(_) => return None,
+            None => (step, false),
+        };
+        return digits(n).then(|| format!("__pl7_{}_{n}", if time { 't' } else { 'x' }));
+    }
+    let word = rest.strip_prefix("SW").or_else(|| rest.strip_prefix('S'))?;
+    digits(word).then(|| format!("_{rest}"))
 }
 
 /// The type of `a op b`, `None` when the operator does not apply.
