@@ -23,7 +23,10 @@ END_PROGRAM
 ";
 
 fn build() -> (Program, Project) {
-    let dir = std::env::temp_dir().join(format!("automat-judge-{}", std::process::id()));
+    // One folder per call: the tests run in parallel.
+    static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("automat-judge-{}-{n}", std::process::id()));
     let _ = std::fs::create_dir_all(&dir);
     let st = dir.join("p.st");
     std::fs::write(&st, PROGRAM).expect("write the program");
@@ -195,4 +198,36 @@ expect at 1s Nothing
             ("E321".to_string(), 144),
         ]
     );
+}
+
+/// Hostile names and lines are refused at once, in the checker as in the
+/// parser: a path of 20,000 names (the path resolver tried every prefix),
+/// brackets, huge addresses, deep nesting in actions and reactions.
+#[test]
+fn hostile_scenarios_are_refused_fast() {
+    let (program, project) = build();
+    let lines = [
+        format!("expect at 1s {}b", "a.".repeat(20_000)),
+        format!("expect at 1s x{}{}", "[".repeat(20_000), "]".repeat(20_000)),
+        format!("expect at 1s {}", "a".repeat(200_000)),
+        format!("expect at 1s %IX{}.0", "9".repeat(20_000)),
+        format!("at 0s set {}1{} = 1", "a[".repeat(10_000), "]".repeat(10_000)),
+        format!("at 0s press {}", "(".repeat(100_000)),
+        format!("when {}x then press In", "rise(".repeat(100_000)),
+        format!("expect {}b stable for 1s after 0s", "P.".repeat(20_000)),
+    ];
+    for line in lines {
+        let text = format!("duration 100ms\n{line}\n");
+        let t0 = std::time::Instant::now();
+        if let Ok(scn) = automat_scenario::parse(&text, FileId(1), "hostile") {
+            let r = automat_scenario::run::<std::io::Sink>(&program, &project, &scn, None);
+            assert!(r.is_err(), "{}", &line[..40]);
+        }
+        let took = t0.elapsed();
+        assert!(
+            took < std::time::Duration::from_millis(1500),
+            "{took:?}: {}",
+            &line[..40]
+        );
+    }
 }
