@@ -344,7 +344,8 @@ fn build_project(toml: &Path) -> Built {
         Ok((prog, _warnings)) => prog,
         Err(e) => return Err(e.text),
     };
-    automat_project::tasks::apply(&p.tasks, &mut prog).map_err(|d| render::render_report(&map, &d))?;
+    automat_project::tasks::apply(&p.tasks, &mut prog)
+        .map_err(|d| render::render_report(&map, &d))?;
     if let (Some(spec), Some(plant)) = (
         &p.plant,
         p.new_plant().map_err(|d| render::render_report(&map, &d))?,

@@ -261,8 +261,10 @@ fn run_loaded(args: &RunArgs, loaded: Loaded, from_project: bool) -> Result<Outc
         scenario_shown = path.display().to_string();
         let file = map.add(scenario_shown.clone(), text.clone());
         let scn = automat_scenario::parse(&text, file, "scenario").map_err(|d| fail(&map, &d))?;
-        let Prepared { actions: a, judge: j } =
-            automat_scenario::prepare(&scope, &scn).map_err(|d| fail(&map, &d))?;
+        let Prepared {
+            actions: a,
+            judge: j,
+        } = automat_scenario::prepare(&scope, &scn).map_err(|d| fail(&map, &d))?;
         actions = a;
         judge = Some(j);
         // The scenario's seed, as `automat test` uses it.

@@ -45,7 +45,10 @@ fn a_project_without_plant_runs_its_scenario() {
         "%QX0.0",
     ]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
-    assert_eq!(text(&out.stdout), "Crossing.phase = Phase#Go\n%QX0.0 = TRUE\n");
+    assert_eq!(
+        text(&out.stdout),
+        "Crossing.phase = Phase#Go\n%QX0.0 = TRUE\n"
+    );
     assert_eq!(
         text(&out.stderr),
         "scenario examples/traffic-light/scenarios/one_request.scn: every expectation held\n"
@@ -99,8 +102,11 @@ expect at 950ms n = -5
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     assert_eq!(text(&out.stdout), "n = -5\n");
     // A wrong expectation: exit 1, the failure as `automat test` shows it.
-    std::fs::write(&scn, "duration 1s\nat 100ms press Button for 300ms\nexpect at 450ms n = 21\n")
-        .expect("write");
+    std::fs::write(
+        &scn,
+        "duration 1s\nat 100ms press Button for 300ms\nexpect at 450ms n = 21\n",
+    )
+    .expect("write");
     let out = automat(&["run", &st, "--scenario", &scn]);
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
     assert_eq!(
@@ -186,7 +192,10 @@ fn junit_report_exit_codes_and_jobs() {
     assert_eq!(four.status.code(), Some(2));
     // The failure's trace paths name the --out folder of each run.
     let norm = |o: &Output, jobs: &str| {
-        text(&o.stdout).replace(&dir.join(format!("out-{jobs}")).display().to_string(), "OUT")
+        text(&o.stdout).replace(
+            &dir.join(format!("out-{jobs}")).display().to_string(),
+            "OUT",
+        )
     };
     let stdout = norm(&one, "1");
     assert_eq!(stdout, norm(&four, "4"));
@@ -198,7 +207,9 @@ fn junit_report_exit_codes_and_jobs() {
     );
     let last: Vec<&str> = stdout.lines().rev().take(1).collect();
     assert_eq!(last, ["5 passed, 1 failed, 3 errors"]);
-    assert!(stdout.contains("FAILED crates/cli/tests/fixtures/failing_crane/scenarios/wrong.scn (wrong expectations)\n"));
+    assert!(stdout.contains(
+        "FAILED crates/cli/tests/fixtures/failing_crane/scenarios/wrong.scn (wrong expectations)\n"
+    ));
     assert!(stdout.contains("ERROR crates/cli/tests/projects/no_plant_e325_e326/scenarios/e325_needs_plant.scn (e325_needs_plant)\n"));
     let xml = without_times(&xml1);
     assert!(xml.starts_with(
@@ -210,14 +221,31 @@ fn junit_report_exit_codes_and_jobs() {
     assert!(xml.contains("<testsuite name=\"tests/conformance\" tests=\"1\" failures=\"0\" errors=\"0\" skipped=\"0\">"), "{xml}");
     assert!(xml.ends_with("  </testsuite>\n</testsuites>\n"));
     // Only passing items: exit 0; an unwritable --junit path: exit 2.
-    let ok = automat(&["test", LIGHT, "--junit", &dir.join("ok.xml").display().to_string()]);
+    let ok = automat(&[
+        "test",
+        LIGHT,
+        "--junit",
+        &dir.join("ok.xml").display().to_string(),
+    ]);
     assert_eq!(ok.status.code(), Some(0));
     assert!(text(&ok.stdout).ends_with("4 passed, 0 failed\n"));
-    let bad = automat(&["test", LIGHT, "--junit", &dir.join("no/such/dir.xml").display().to_string()]);
+    let bad = automat(&[
+        "test",
+        LIGHT,
+        "--junit",
+        &dir.join("no/such/dir.xml").display().to_string(),
+    ]);
     assert_eq!(bad.status.code(), Some(2));
-    assert!(text(&bad.stderr).starts_with("error: --junit "), "{}", text(&bad.stderr));
+    assert!(
+        text(&bad.stderr).starts_with("error: --junit "),
+        "{}",
+        text(&bad.stderr)
+    );
     // A bad --jobs is a command-line error.
-    assert_eq!(automat(&["test", LIGHT, "--jobs", "0"]).status.code(), Some(2));
+    assert_eq!(
+        automat(&["test", LIGHT, "--jobs", "0"]).status.code(),
+        Some(2)
+    );
 }
 
 /// The dialects' own addresses name variables in scenarios: PL7 steps
@@ -241,7 +269,12 @@ fn scenarios_take_the_dialects_addresses() {
         std::fs::write(&path, scn).expect("write");
         let shown = path.display().to_string();
         let out = automat(&["run", project, "--scenario", &shown]);
-        assert_eq!(out.status.code(), Some(0), "{project}: {}", text(&out.stderr));
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{project}: {}",
+            text(&out.stderr)
+        );
         assert!(
             text(&out.stderr).ends_with(&format!("scenario {shown}: every expectation held\n")),
             "{}",

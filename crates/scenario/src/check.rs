@@ -229,16 +229,16 @@ impl Scope<'_> {
                     .ok_or(e)
             })
             .map_err(|e| {
-            if self.plantless() {
-                unknown(format!("`{}` is no variable of the program: {e}", n.text))
-            } else {
-                unknown(format!(
+                if self.plantless() {
+                    unknown(format!("`{}` is no variable of the program: {e}", n.text))
+                } else {
+                    unknown(format!(
                     "`{}` is no signal of the {} model, no `plant.` quantity and no variable: {e}",
                     n.text,
                     self.plant.name()
                 ))
-            }
-        })?;
+                }
+            })?;
         let ty = place_ty(&place).ok_or_else(|| {
             mismatch(
                 n.span,
@@ -285,7 +285,10 @@ impl Scope<'_> {
     ) -> Result<Cond, Diagnostic> {
         let (c, ty, span) = self.typed(e, refs, ctx)?;
         if ty.is_none() {
-            return Err(mismatch(span, "an enumeration value alone is no value to watch".into()));
+            return Err(mismatch(
+                span,
+                "an enumeration value alone is no value to watch".into(),
+            ));
         }
         Ok(c)
     }
@@ -387,11 +390,7 @@ impl Scope<'_> {
                         ),
                     )
                 })?;
-                (
-                    Cond::Arith(*op, Box::new(ca), Box::new(cb)),
-                    Some(ty),
-                    span,
-                )
+                (Cond::Arith(*op, Box::new(ca), Box::new(cb)), Some(ty), span)
             }
             Expr::Neg(x, minus) => {
                 let (c, ty, span) = self.typed(x, refs, ctx)?;

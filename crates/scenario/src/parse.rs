@@ -348,8 +348,8 @@ fn is_stop_word(w: &str) -> bool {
     [
         "within", "during", "after", "stable", "for", "then", "AND", "OR", "XOR", "MOD",
     ]
-        .iter()
-        .any(|k| w.eq_ignore_ascii_case(k))
+    .iter()
+    .any(|k| w.eq_ignore_ascii_case(k))
 }
 
 /// A literal, or `None` when the word is a name.
@@ -658,7 +658,9 @@ fn expect(l: &mut Line) -> Res<Expect> {
         }
         return Ok(blank(When::During { from, to }, c));
     }
-    Err(l.err("expected `within`, `stable` or `during` (or write `expect at T C`, `expect always C`)"))
+    Err(l.err(
+        "expected `within`, `stable` or `during` (or write `expect at T C`, `expect always C`)",
+    ))
 }
 
 #[cfg(test)]

@@ -181,10 +181,15 @@ when fall(l1) after 1.5s then set n = -2
             to: 60_000_000_000
         }
     );
-    assert!(matches!(&s.expects[2].cond, Expr::Cmp(CmpOp::Le, c, _) if matches!(&**c, Expr::Call(Func::Count, ..))));
+    assert!(
+        matches!(&s.expects[2].cond, Expr::Cmp(CmpOp::Le, c, _) if matches!(&**c, Expr::Call(Func::Count, ..)))
+    );
     assert!(matches!(
         &s.expects[3].when,
-        When::Stable { after: Anchor::Event(_), for_ns: 500_000_000 }
+        When::Stable {
+            after: Anchor::Event(_),
+            for_ns: 500_000_000
+        }
     ));
     assert_eq!(
         s.expects[4].when,
@@ -196,9 +201,14 @@ when fall(l1) after 1.5s then set n = -2
     assert!(matches!(&s.expects[5].cond, Expr::Cmp(CmpOp::Lt, a, m)
         if matches!(&**a, Expr::Call(Func::Abs, ..)) && matches!(&**m, Expr::Arith(ArithOp::Mod, ..))));
     assert_eq!(s.reactions.len(), 2);
-    assert!(matches!(&s.reactions[0].kind, ActionKind::Press(n, Some(200_000_000)) if n.text == "Pc"));
+    assert!(
+        matches!(&s.reactions[0].kind, ActionKind::Press(n, Some(200_000_000)) if n.text == "Pc")
+    );
     assert_eq!(s.reactions[1].delay_ns, 1_500_000_000);
-    assert!(matches!(&s.reactions[1].kind, ActionKind::Set(_, Lit::Int(-2), _)));
+    assert!(matches!(
+        &s.reactions[1].kind,
+        ActionKind::Set(_, Lit::Int(-2), _)
+    ));
     assert_eq!(s.reactions[1].line, 10);
 }
 
@@ -226,25 +236,35 @@ fn errors_of_the_new_constructs() {
     );
     // A name that happens to be a function's name is a name without `(`.
     let s = ok("duration 1s\nexpect at 1s count > 2\n");
-    assert!(matches!(&s.expects[0].cond, Expr::Cmp(_, c, _) if matches!(&**c, Expr::Ref(n) if n.text == "count")));
+    assert!(
+        matches!(&s.expects[0].cond, Expr::Cmp(_, c, _) if matches!(&**c, Expr::Ref(n) if n.text == "count"))
+    );
 }
 
 /// Every nesting construct is bounded, and hostile lines are refused at
 /// once (parse, and the action reader of the live console).
 #[test]
 fn every_nesting_construct_is_bounded() {
-    for open in ["(", "NOT ", "- ", "rise(", "abs(", "min(1, ", "prev(", "count("] {
+    for open in [
+        "(", "NOT ", "- ", "rise(", "abs(", "min(1, ", "prev(", "count(",
+    ] {
         let line = format!("duration 1s\nexpect at 1s {}x\n", open.repeat(50_000));
         let t0 = std::time::Instant::now();
         let (code, _, msg) = err(&line);
         assert_eq!(code, Code::E320, "{open}");
         assert!(msg.contains("nest too deeply"), "{open}: {msg}");
-        assert!(t0.elapsed() < std::time::Duration::from_millis(500), "{open}");
+        assert!(
+            t0.elapsed() < std::time::Duration::from_millis(500),
+            "{open}"
+        );
     }
     for line in [
         format!("duration 1s\nat 0s press {}\n", "(".repeat(100_000)),
         format!("duration 1s\nwhen {}x then press a\n", "(".repeat(100_000)),
-        format!("duration 1s\nexpect x within 1s after {}x\n", "(".repeat(100_000)),
+        format!(
+            "duration 1s\nexpect x within 1s after {}x\n",
+            "(".repeat(100_000)
+        ),
         format!("duration 1s\nexpect always x{}\n", " + x".repeat(100_000)),
     ] {
         let t0 = std::time::Instant::now();

@@ -30,9 +30,7 @@
 //! fault of the program fails the scenario.
 
 use crate::ast::{self, Anchor, Scenario, When};
-use crate::check::{
-    same, show_f64, show_value, Cond, Ctx, Frame, NoPlant, Ref, Scope, Src, Val,
-};
+use crate::check::{same, show_f64, show_value, Cond, Ctx, Frame, NoPlant, Ref, Scope, Src, Val};
 use automat_base::Diagnostic;
 use automat_engine::Engine;
 use automat_iec::format::format_duration;
@@ -216,11 +214,7 @@ pub fn prepare(scope: &Scope, scn: &Scenario) -> Result<Prepared, Vec<Diagnostic
 }
 
 /// Resolves one expectation.
-pub fn check_expect(
-    scope: &Scope,
-    e: &ast::Expect,
-    refs: &mut Vec<Ref>,
-) -> Result<(), Diagnostic> {
+pub fn check_expect(scope: &Scope, e: &ast::Expect, refs: &mut Vec<Ref>) -> Result<(), Diagnostic> {
     check_of(scope, e, refs).map(|_| ())
 }
 
@@ -304,7 +298,8 @@ impl Judge {
     /// The values before the first scan (for `prev`, `rise`, ...).
     pub fn start(&mut self, image: &[u8], sim: &Sim) {
         self.prev.clear();
-        self.prev.extend(self.refs.iter().map(|r| r.read(image, sim)));
+        self.prev
+            .extend(self.refs.iter().map(|r| r.read(image, sim)));
         self.started = true;
     }
 
@@ -335,7 +330,8 @@ impl Judge {
         {
             let s = sim.borrow();
             self.vals.clear();
-            self.vals.extend(self.refs.iter().map(|r| r.read(image, &s)));
+            self.vals
+                .extend(self.refs.iter().map(|r| r.read(image, &s)));
         }
         if !self.started {
             self.prev.clone_from(&self.vals);
@@ -762,7 +758,10 @@ pub fn run_on<E: Executor, W: Write>(
             };
             (plant, bindings)
         }
-        _ => (Box::new(NoPlant) as Box<dyn automat_plant::Plant>, Vec::new()),
+        _ => (
+            Box::new(NoPlant) as Box<dyn automat_plant::Plant>,
+            Vec::new(),
+        ),
     };
     let scope = Scope {
         program,

@@ -5,7 +5,6 @@
 use automat_base::FileId;
 use automat_ir::Program;
 use automat_project::{Project, RetainSpec};
-use std::path::PathBuf;
 
 const PROGRAM: &str = "PROGRAM P
 VAR
@@ -31,7 +30,7 @@ fn build() -> (Program, Project) {
     let st = dir.join("p.st");
     std::fs::write(&st, PROGRAM).expect("write the program");
     let (program, _) =
-        automat_project::build::compile(&[st.clone()], None, &[]).expect("the program compiles");
+        automat_project::build::compile(std::slice::from_ref(&st), None, &[]).expect("the program compiles");
     let project = Project {
         dir,
         file: FileId(0),
@@ -77,7 +76,10 @@ const CASES: &[(&str, &[&str])] = &[
     // Counting over a window, judged at its end.
     ("expect count(rise(Out)) = 1 during 0s..1s", &[]),
     ("expect count(change(n)) = 20 during 0s..1s", &[]),
-    ("expect count(In) = 20 AND count(Out) = 15 during 0s..1s", &[]),
+    (
+        "expect count(In) = 20 AND count(Out) = 15 during 0s..1s",
+        &[],
+    ),
     ("expect count(rise(In)) = 0 during 400ms..1s", &[]),
     (
         "expect count(rise(Out)) = 2 during 0s..1s",
@@ -112,19 +114,37 @@ const CASES: &[(&str, &[&str])] = &[
     // Arithmetic, on numbers and TIMEs.
     ("expect always abs(x - n * 0.5) < 0.001 AND x * 2 = n", &[]),
     // (ET stops at PT: 50 ms.)
-    ("expect at 200ms P.t.ET = 50ms AND P.t.ET - 20ms = T#30ms", &[]),
-    ("expect at 200ms P.t.ET / 2 = 25ms AND P.t.ET / 10ms = 5 AND P.t.ET * 2 = 2 * P.t.ET", &[]),
-    ("expect at 200ms n MOD 4 = 3 AND -n = 0 - 11 AND min(n, 5) + max(n, 5) = 16", &[]),
+    (
+        "expect at 200ms P.t.ET = 50ms AND P.t.ET - 20ms = T#30ms",
+        &[],
+    ),
+    (
+        "expect at 200ms P.t.ET / 2 = 25ms AND P.t.ET / 10ms = 5 AND P.t.ET * 2 = 2 * P.t.ET",
+        &[],
+    ),
+    (
+        "expect at 200ms n MOD 4 = 3 AND -n = 0 - 11 AND min(n, 5) + max(n, 5) = 16",
+        &[],
+    ),
     ("expect at 200ms x / 0 > 1000000", &[]),
     // The previous scan's values; before the first scan: the initial ones.
-    ("expect always n - prev(n) <= 1 AND (n = prev(n) OR In)", &[]),
+    (
+        "expect always n - prev(n) <= 1 AND (n = prev(n) OR In)",
+        &[],
+    ),
     ("expect never rise(Out) AND prev(Out)", &[]),
     ("expect always change(n) = (n <> prev(n))", &[]),
     // Reactions: at the event's scan, applied by the next scan.
     ("when rise(Out) then release In\nexpect at 500ms n = 6", &[]),
-    ("when rise(Out) after 100ms then release In\nexpect at 500ms n = 15", &[]),
+    (
+        "when rise(Out) after 100ms then release In\nexpect at 500ms n = 15",
+        &[],
+    ),
     // Each fall presses again: two more scans with In every 30 ms.
-    ("when fall(In) then press In for 30ms\nexpect at 500ms n = 34", &[]),
+    (
+        "when fall(In) then press In for 30ms\nexpect at 500ms n = 34",
+        &[],
+    ),
     ("when In then set n = 100\nexpect at 110ms n = 101", &[]),
 ];
 
@@ -164,7 +184,8 @@ fn verdicts_of_every_construct() {
 #[test]
 fn failures_show_the_values() {
     let (program, project) = build();
-    let text = "duration 1s\nat 100ms press In for 200ms\nexpect at 200ms n * 2 = x + P.t.ET / 1ms\n";
+    let text =
+        "duration 1s\nat 100ms press In for 200ms\nexpect at 200ms n * 2 = x + P.t.ET / 1ms\n";
     let scn = automat_scenario::parse(text, FileId(1), "case").expect("parses");
     let out = automat_scenario::run::<std::io::Sink>(&program, &project, &scn, None).expect("runs");
     let f = out.failures.first().expect("a failure");
@@ -187,7 +208,10 @@ expect at 1s Nothing
     let Err(d) = automat_scenario::run::<std::io::Sink>(&program, &project, &scn, None) else {
         panic!("should be refused")
     };
-    let got: Vec<(String, u32)> = d.iter().map(|d| (d.code.as_str().to_string(), d.span.start)).collect();
+    let got: Vec<(String, u32)> = d
+        .iter()
+        .map(|d| (d.code.as_str().to_string(), d.span.start))
+        .collect();
     assert_eq!(
         got,
         [
@@ -211,7 +235,11 @@ fn hostile_scenarios_are_refused_fast() {
         format!("expect at 1s x{}{}", "[".repeat(20_000), "]".repeat(20_000)),
         format!("expect at 1s {}", "a".repeat(200_000)),
         format!("expect at 1s %IX{}.0", "9".repeat(20_000)),
-        format!("at 0s set {}1{} = 1", "a[".repeat(10_000), "]".repeat(10_000)),
+        format!(
+            "at 0s set {}1{} = 1",
+            "a[".repeat(10_000),
+            "]".repeat(10_000)
+        ),
         format!("at 0s press {}", "(".repeat(100_000)),
         format!("when {}x then press In", "rise(".repeat(100_000)),
         format!("expect {}b stable for 1s after 0s", "P.".repeat(20_000)),
