@@ -385,14 +385,34 @@ fn run_loaded(args: &RunArgs, loaded: Loaded, from_project: bool) -> Result<Outc
     if let Some(j) = observer.judge.take() {
         // A run stopped by a fault or a signal keeps the verdicts reached;
         // what was still open is not judged.
-        let complete = matches!(report.end, RunEnd::Limit | RunEnd::TimeExhausted);
+        // A run cut short of the scenario's duration (--cycles, a shorter
+        // --duration) judges only what was decided before its end.
+        let scn_ns = scenario_ns.unwrap_or(0);
+        let covered = match cfg.limit {
+            Limit::Duration(d) => d >= scn_ns,
+            Limit::Cycles(n) => {
+                i64::try_from(n).map_or(true, |n| n.saturating_mul(cfg.cycle_time_ns) >= scn_ns)
+            }
+            Limit::Unbounded => true,
+        };
+        let complete = covered && matches!(report.end, RunEnd::Limit | RunEnd::TimeExhausted);
+        let open = j.open();
         let failures = if complete {
             j.finish(exec.image(), &sim.borrow())
         } else {
             j.failures()
         };
+        if !covered && open > 0 {
+            eprintln!(
+                "scenario {scenario_shown}: the run ends before the scenario's duration ({}): {open} expectation{} not judged",
+                automat_iec::format::format_duration(scn_ns, false),
+                if open == 1 { "" } else { "s" }
+            );
+        }
         if failures.is_empty() {
-            eprintln!("scenario {scenario_shown}: every expectation held");
+            if complete {
+                eprintln!("scenario {scenario_shown}: every expectation held");
+            }
         } else {
             eprintln!(
                 "scenario {scenario_shown}: {} expectation{} failed",

@@ -211,6 +211,14 @@ fn junit_report_exit_codes_and_jobs() {
         "FAILED crates/cli/tests/fixtures/failing_crane/scenarios/wrong.scn (wrong expectations)\n"
     ));
     assert!(stdout.contains("ERROR crates/cli/tests/projects/no_plant_e325_e326/scenarios/e325_needs_plant.scn (e325_needs_plant)\n"));
+    // Well-formed XML (xmllint is installed by .ci/run).
+    let lint = Command::new("xmllint")
+        .args(["--noout", &dir.join("one.xml").display().to_string()])
+        .output();
+    match lint {
+        Ok(o) => assert!(o.status.success(), "{}", text(&o.stderr)),
+        Err(e) => assert!(std::env::var_os("CI").is_none(), "xmllint: {e}"),
+    }
     let xml = without_times(&xml1);
     assert!(xml.starts_with(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"automat test\" tests=\"9\" failures=\"1\" errors=\"3\" skipped=\"0\">\n  <testsuite name=\"examples/traffic-light\" tests=\"4\" failures=\"0\" errors=\"0\" skipped=\"0\">\n    <testcase name=\"scenarios/busy.scn (a pedestrian presses again 1 s after every walk phase)\" classname=\"examples/traffic-light\" file=\"examples/traffic-light/scenarios/busy.scn\"/>\n"

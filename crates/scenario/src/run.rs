@@ -374,6 +374,11 @@ impl Judge {
         std::mem::swap(&mut self.vals, &mut self.prev);
     }
 
+    /// How many expectations are still open (not yet passed or failed).
+    pub fn open(&self) -> usize {
+        self.checks.iter().filter(|c| !c.done).count()
+    }
+
     /// The failures so far (a run that stopped early: what was still open
     /// is not judged), in time order.
     pub fn failures(self) -> Vec<Failure> {
