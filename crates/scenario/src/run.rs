@@ -107,9 +107,10 @@ enum Win {
 struct Check {
     win: Win,
     cond: Cond,
-    /// The arguments of its `count(...)`s, and their counters.
+    /// The arguments of its `count(...)`s, their counters and their text.
     counts: Vec<Cond>,
     counters: Vec<f64>,
+    count_texts: Vec<String>,
     text: String,
     line: u32,
     /// Indexes into the refs this condition names, for the failure values.
@@ -253,9 +254,22 @@ fn check_of(scope: &Scope, e: &ast::Expect, refs: &mut Vec<Ref>) -> Result<Check
     for c in &counts {
         c.refs(&mut names);
     }
+    // The counts as written, for the failure's values (the checker numbers
+    // them left to right, as this walk meets them).
+    let mut spans = Vec::new();
+    count_spans(&e.cond, &mut spans);
+    let count_texts = spans
+        .iter()
+        .map(|s| {
+            let from = s.start.saturating_sub(e.span.start) as usize;
+            let to = s.end.saturating_sub(e.span.start) as usize;
+            e.text.get(from..to).unwrap_or("count").to_string()
+        })
+        .collect();
     Ok(Check {
         win,
         counters: vec![0.0; counts.len()],
+        count_texts,
         counts,
         cond,
         text: e.text.clone(),
@@ -266,6 +280,21 @@ fn check_of(scope: &Scope, e: &ast::Expect, refs: &mut Vec<Ref>) -> Result<Check
         seen: false,
         reference: Val::B(false),
     })
+}
+
+/// The spans of the `count(...)` calls in `e`, left to right.
+fn count_spans(e: &ast::Expr, out: &mut Vec<automat_base::Span>) {
+    use ast::{Expr, Func};
+    match e {
+        Expr::Call(Func::Count, _, span) => out.push(*span),
+        Expr::Call(_, args, _) => args.iter().for_each(|a| count_spans(a, out)),
+        Expr::Not(x) | Expr::Neg(x, _) => count_spans(x, out),
+        Expr::Logic(_, a, b) | Expr::Cmp(_, a, b) | Expr::Arith(_, a, b) => {
+            count_spans(a, out);
+            count_spans(b, out);
+        }
+        Expr::Ref(_) | Expr::Lit(..) => {}
+    }
 }
 
 /// Judges the expectations and fires the reactions of one scenario, scan
@@ -314,12 +343,19 @@ impl Judge {
 
     fn fail(&mut self, k: usize, at: i64, reason: String, image: &[u8], sim: &Sim) {
         let Some(c) = self.checks.get(k) else { return };
+        let mut values = self.values(&c.names, image, sim);
+        for (text, n) in c.count_texts.iter().zip(&c.counters) {
+            if !values.is_empty() {
+                values.push_str(", ");
+            }
+            values.push_str(&format!("{text} = {n}"));
+        }
         let f = Failure {
             what: format!("expect {}", c.text),
             line: c.line,
             at_ns: at,
             reason,
-            values: self.values(&c.names, image, sim),
+            values,
         };
         self.failures.push(f);
     }

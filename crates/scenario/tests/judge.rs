@@ -29,8 +29,8 @@ fn build() -> (Program, Project) {
     let _ = std::fs::create_dir_all(&dir);
     let st = dir.join("p.st");
     std::fs::write(&st, PROGRAM).expect("write the program");
-    let (program, _) =
-        automat_project::build::compile(std::slice::from_ref(&st), None, &[]).expect("the program compiles");
+    let (program, _) = automat_project::build::compile(std::slice::from_ref(&st), None, &[])
+        .expect("the program compiles");
     let project = Project {
         dir,
         file: FileId(0),
@@ -190,6 +190,15 @@ fn failures_show_the_values() {
     let out = automat_scenario::run::<std::io::Sink>(&program, &project, &scn, None).expect("runs");
     let f = out.failures.first().expect("a failure");
     assert_eq!(f.values, "n = 11, x = 5.5, P.t.ET = T#50ms");
+    // Counts show as written, with their value.
+    let text = "duration 1s\nat 100ms press In for 200ms\nexpect count(rise(Out)) + count(In) < 3 AND n > 0 during 0s..500ms\n";
+    let scn = automat_scenario::parse(text, FileId(1), "case").expect("parses");
+    let out = automat_scenario::run::<std::io::Sink>(&program, &project, &scn, None).expect("runs");
+    let f = out.failures.first().expect("a failure");
+    assert_eq!(
+        f.values,
+        "n = 20, Out = FALSE, In = FALSE, count(rise(Out)) = 1, count(In) = 20"
+    );
 }
 
 /// A scenario's checker errors for what needs a plant and misplaced
