@@ -40,14 +40,14 @@ fn a_project_without_plant_runs_its_scenario() {
         "--scenario",
         "examples/traffic-light/scenarios/one_request.scn",
         "--print",
-        "Crossing.phase",
+        "Crossing.state",
         "--print",
         "%QX0.0",
     ]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     assert_eq!(
         text(&out.stdout),
-        "Crossing.phase = Phase#Go\n%QX0.0 = TRUE\n"
+        "Crossing.state = Phase#Go\n%QX0.0 = TRUE\n"
     );
     assert_eq!(
         text(&out.stderr),
