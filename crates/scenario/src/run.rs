@@ -571,6 +571,20 @@ fn judge(c: &mut Check, now: i64, vals: &[Val], prev: &[Val]) -> Verdict {
         } => {
             let happened = ev.truth(f);
             c.seen |= happened;
+            let missed = |s: i64| {
+                Verdict::Fail(format!(
+                    "after the event at {} it did not become TRUE in [{}, {}]",
+                    t(s),
+                    t(s),
+                    t(s.saturating_add(*within))
+                ))
+            };
+            // A window that ended between the last scan and this one.
+            if let Some(&s) = c.open.front() {
+                if s.saturating_add(*within) < now {
+                    return missed(s);
+                }
+            }
             if c.cond.truth(f) {
                 // Every open window (and one opening now) is satisfied.
                 c.open.clear();
@@ -580,12 +594,7 @@ fn judge(c: &mut Check, now: i64, vals: &[Val], prev: &[Val]) -> Verdict {
                 c.open.push_back(now);
             }
             match c.open.front() {
-                Some(&s) if now >= s.saturating_add(*within) => Verdict::Fail(format!(
-                    "after the event at {} it did not become TRUE in [{}, {}]",
-                    t(s),
-                    t(s),
-                    t(s.saturating_add(*within))
-                )),
+                Some(&s) if now >= s.saturating_add(*within) => missed(s),
                 _ => Verdict::Open,
             }
         }
@@ -624,6 +633,9 @@ fn judge(c: &mut Check, now: i64, vals: &[Val], prev: &[Val]) -> Verdict {
                 } else {
                     Verdict::Open
                 }
+            } else if now > end {
+                // The window ended between the last scan and this one.
+                Verdict::Pass
             } else if !same(cur, c.reference) {
                 Verdict::Fail(format!(
                     "it changed from {} to {} (stable since {})",

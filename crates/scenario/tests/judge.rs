@@ -59,6 +59,11 @@ const CASES: &[(&str, &[&str])] = &[
         "expect Out within 40ms after rise(In)",
         &["3: T#140ms: after the event at T#100ms it did not become TRUE in [T#100ms, T#140ms]"],
     ),
+    // A window ending between two scans: the scan after its end is too late.
+    (
+        "expect Out within 45ms after rise(In)",
+        &["3: T#150ms: after the event at T#100ms it did not become TRUE in [T#100ms, T#145ms]"],
+    ),
     ("expect NOT Out within 0s after fall(In)", &[]),
     ("expect NOT Out within 0s after fall(%IX0.0)", &[]),
     // A plain condition as anchor is its rising edge.
@@ -102,6 +107,7 @@ const CASES: &[(&str, &[&str])] = &[
         &["3: T#300ms: it changed from TRUE to FALSE, T#150ms after the event at T#150ms"],
     ),
     ("expect n stable during 0s..90ms", &[]),
+    ("expect n stable during 0s..95ms", &[]),
     (
         "expect n stable during 0s..100ms",
         &["3: T#100ms: it changed from 0 to 1 (stable since T#0s)"],
