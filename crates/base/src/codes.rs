@@ -293,15 +293,19 @@ codes! {
     E308 => "project has no sources",
         "The project's `sources` (or, by default, the `*.st` files beside `automat.toml`) name no readable Structured Text file.";
     E320 => "scenario syntax error",
-        "A line of a `.scn` scenario file does not follow the scenario language: `name`, `duration`, `seed`, `at TIME ACTION` and `expect ...` lines, conditions with `= <> < <= > >= AND OR XOR NOT` and parentheses.";
+        "A line of a `.scn` scenario file does not follow the scenario language (docs/scenarios.md): `name`, `duration`, `seed`, `at TIME ACTION`, `when EVENT [after TIME] then ACTION` and `expect ...` lines; conditions with `= <> < <= > >= AND OR XOR NOT`, arithmetic `+ - * / MOD`, parentheses and the functions rise, fall, change, prev, count, abs, min and max; at most 256 operands and 32 levels of nesting.";
     E321 => "unknown name in a scenario",
-        "A scenario names something that is neither a signal of the plant model, a quantity `plant.<name>`, nor a variable path of the program.";
+        "A scenario names something that is neither a signal of the plant model, a quantity `plant.<name>`, nor a variable of the program (a path such as `Ctrl.fb.Q`, a direct address such as `%IX0.1`, or a dialect operand such as FST `I0.1`).";
     E322 => "scenario type mismatch",
-        "A scenario compares or sets values of incompatible types (a BOOL with a number, an enumeration value of another type), or presses a signal that is not a BOOL operator signal.";
+        "A scenario compares, computes with or sets values of incompatible types (a BOOL with a number, a TIME plus a number, an enumeration value of another type), or presses a signal that is not a BOOL operator signal.";
     E323 => "scenario without duration",
         "Every scenario needs a `duration` line: the PLC time it simulates.";
     E324 => "scenario outside a project",
         "A `.scn` file must lie in a project folder: a folder with `automat.toml` at or above it.";
+    E325 => "scenario needs a plant",
+        "The project has no `[plant]`, and the scenario uses what only a plant model has: a `plant.<quantity>`, `stuck`, `unstick` or `noise` on a signal, or a `plant` command. Without a plant a scenario drives the program's own variables (`set`, `press`, `release` on variable paths and direct addresses) and checks them; see docs/scenarios.md.";
+    E326 => "misplaced scenario function",
+        "A function of the scenario language is used where it has no meaning: `count(...)` outside an expectation with a window (`expect C during A..B`, `expect at T C`, `expect always C`) or inside another function's argument; `rise`, `fall`, `change` or `prev` inside one another (they compare one scan with the one before and take plain values). See docs/scenarios.md.";
 
     // ---- warnings ----
     W001 => "unused variable",

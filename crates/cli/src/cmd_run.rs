@@ -38,7 +38,8 @@ use std::sync::Arc;
 /// fault. Every task run is watched in wall time (--watchdog,
 /// `[tasks.NAME]`; see docs/watchdog.md).
 ///
-/// Exit codes: 0 ok, 1 the program does not compile, 2 bad command line
+/// Exit codes: 0 ok, 1 the program does not compile (or, with --scenario,
+/// an expectation failed), 2 bad command line
 /// (including an unknown variable in --print or --trace, or a --retain
 /// path that cannot be written), 3 runtime fault (every output, the %Q
 /// area and each program VAR_OUTPUT, set to its safe value; the message
@@ -123,9 +124,12 @@ pub struct RunArgs {
     /// time (PLC and plant time both).
     #[arg(long, value_name = "N", default_value_t = 1.0)]
     pub(crate) speed: f64,
-    /// Project folders only: apply the timed actions of this scenario file
-    /// (its expectations are checked by `automat test`); its `duration`
-    /// bounds the run when neither --cycles nor --duration is given.
+    /// Drive the run by this scenario file (its timed actions and `when`
+    /// reactions, its `seed`) and judge its expectations as `automat test`
+    /// does: the failed ones on stderr, exit 1. Its `duration` bounds the
+    /// run when neither --cycles nor --duration is given. Works on plain
+    /// source files and on projects without `[plant]` too: the scenario
+    /// sets and presses the program's own variables (docs/scenarios.md).
     #[arg(long, value_name = "FILE.scn")]
     pub(crate) scenario: Option<PathBuf>,
     /// Serve the network API (HTTP/JSON and a WebSocket, see
@@ -327,6 +331,9 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
         if let Some(toml) = automat_project::project_file(p) {
             return crate::project_run::run(args, &toml);
         }
+    }
+    if args.scenario.is_some() {
+        return crate::project_run::run_sources(args);
     }
     let cycle_time = args.cycle_time.unwrap_or(10_000_000);
     if cycle_time <= 0 {

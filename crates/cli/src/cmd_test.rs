@@ -1,32 +1,42 @@
-//! `automat test`: every scenario and conformance program under the paths.
+//! `automat test`: every scenario and conformance program under the paths,
+//! on `--jobs` threads, reported in the order the files were found (the
+//! same output for every number of jobs), optionally as JUnit XML.
 
 use crate::{plot, Outcome};
 use automat_base::{render, SourceMap};
-use automat_iec::format::format_duration;
 use automat_ir::Program;
 use automat_project::folder::{Entry, Walk};
 use automat_project::{build, find_above, Project};
 use automat_scenario::conformance::{self, Backend, Verdict};
 use clap::Args;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{mpsc, Arc, Mutex, OnceLock};
+use std::time::Instant;
 
 /// Run every scenario (`*.scn`, with the project of the `automat.toml` at
-/// or above it) and every execution-conformance program (`.st` with a
+/// or above it; a project without `[plant]` drives and checks its own
+/// variables) and every execution-conformance program (`.st` with a
 /// `cycles:`/`expect:` header) under the paths, in virtual time.
 ///
-/// Prints one line per scenario or program (`ok NAME` or `FAILED NAME`,
-/// with the failed expectations as written, their file:line, the PLC time
-/// and the values involved), writes the failed run's trace
+/// Prints one line per scenario or program (`ok NAME`, `FAILED NAME` with
+/// the failed expectations as written, their file:line, the PLC time and
+/// the values involved, or `ERROR NAME` with the diagnostics of a
+/// scenario or project that cannot run), writes the failed run's trace
 /// (`NAME.fail.csv`) and timing diagram (`NAME.fail.svg`) next to the
-/// scenario or under --out, and `N passed, M failed` last.
+/// scenario or under --out, and `N passed, M failed` last (`, K errors`
+/// when some could not run). The output is the same, in the same order,
+/// for every --jobs.
 ///
 /// Folders searched skip hidden folders (`.git`, ...), `target` folders and
 /// every folder holding a file named `.automat-test-skip` (deliberately
 /// failing fixtures mark themselves so; `skipped DIR` is printed). A path
 /// given on the command line is always searched, marked or not.
 ///
-/// Exit codes: 0 all passed, 1 some failed, 2 bad command line.
+/// Exit codes: 0 all passed, 1 some failed, 2 some could not run (a
+/// scenario or program with errors, an unreadable file, a project that
+/// does not build) or a bad command line (also an unwritable --junit file).
 #[derive(Args)]
 pub struct TestArgs {
     /// Files or folders to search (default: the current folder).
@@ -35,6 +45,15 @@ pub struct TestArgs {
     /// Write the traces and diagrams of failures into DIR.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// Also write the results as JUnit XML to FILE (one testsuite per
+    /// project or folder, one testcase per scenario or program; read by
+    /// GitLab, Jenkins and GitHub test reporters).
+    #[arg(long, value_name = "FILE")]
+    junit: Option<PathBuf>,
+    /// Run N scenarios and programs at once (default: the number of
+    /// cores). Results and output order do not depend on N.
+    #[arg(long, short = 'j', value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
+    jobs: Option<u64>,
 }
 
 enum Item {
@@ -99,60 +118,122 @@ fn extension(p: &Path) -> Option<String> {
         .map(str::to_ascii_lowercase)
 }
 
-/// A project loaded and compiled once for all its scenarios.
-type Built = Result<(Project, Program), String>;
-
-struct Runner {
-    map: SourceMap,
-    projects: BTreeMap<PathBuf, Built>,
-    out: Option<PathBuf>,
-    passed: usize,
-    failed: usize,
-    pending: usize,
+/// A project loaded, compiled and bound to its plant once for all its
+/// scenarios; `warnings` are printed (once) before its first result.
+struct BuiltProject {
+    project: Project,
+    program: Program,
+    warnings: String,
 }
 
-impl Runner {
-    fn project(&mut self, toml: &Path) -> &Built {
-        let map = &mut self.map;
-        self.projects.entry(toml.to_path_buf()).or_insert_with(|| {
-            let p = automat_project::load(toml, map).map_err(|d| render::render_report(map, &d))?;
-            for w in &p.warnings {
-                eprintln!("{w}");
-            }
-            match build::compile(&p.sources, p.program.clone(), &p.libraries) {
-                Ok((mut prog, _warnings)) => {
-                    match automat_project::tasks::apply(&p.tasks, &mut prog) {
-                        Ok(()) => Ok((p, prog)),
-                        Err(d) => Err(render::render_report(map, &d)),
-                    }
-                }
-                Err(e) => Err(e.text),
-            }
-        })
-    }
+type Built = Result<BuiltProject, String>;
 
-    fn fail(&mut self, name: &str, details: &str) {
-        self.failed += 1;
-        println!("FAILED {name}");
-        for l in details.lines() {
-            println!("    {l}");
+/// How one scenario or program came out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Status {
+    Passed,
+    Failed,
+    /// It could not run: its diagnostics are the details.
+    Error,
+    /// `pending` or `known-bug` conformance cases (not counted).
+    Pending,
+}
+
+/// The result of one item, printed by the main thread in item order.
+struct Report {
+    /// `examples/crane/scenarios/normal.scn (normal cycle)`.
+    title: String,
+    /// The file, as shown.
+    file: String,
+    /// The JUnit testsuite: the project folder, or the file's folder.
+    suite: String,
+    status: Status,
+    /// Failed or error details, one line each (printed indented), or the
+    /// pending line.
+    details: String,
+    /// The project whose warnings go to stderr before this report.
+    project: Option<PathBuf>,
+    warnings: String,
+    secs: f64,
+}
+
+impl Report {
+    fn new(file: &str, suite: String) -> Report {
+        Report {
+            title: file.to_string(),
+            file: file.to_string(),
+            suite,
+            status: Status::Passed,
+            details: String::new(),
+            project: None,
+            warnings: String::new(),
+            secs: 0.0,
         }
     }
+    fn case(&self) -> crate::junit::Case<'_> {
+        use crate::junit::Kind;
+        crate::junit::Case {
+            suite: &self.suite,
+            name: self
+                .title
+                .strip_prefix(&self.suite)
+                .and_then(|t| t.strip_prefix('/'))
+                .unwrap_or(&self.title),
+            file: &self.file,
+            kind: match self.status {
+                Status::Passed => Kind::Passed,
+                Status::Failed => Kind::Failed,
+                Status::Error => Kind::Error,
+                Status::Pending => Kind::Skipped,
+            },
+            details: &self.details,
+            secs: self.secs,
+        }
+    }
+    fn fail(mut self, status: Status, details: String) -> Report {
+        self.status = status;
+        self.details = details;
+        self
+    }
+}
 
-    fn scenario(&mut self, path: &Path) {
+/// What the worker threads share.
+struct Shared {
+    /// Projects by `automat.toml`: built by the first scenario that needs
+    /// one, while the others wait for it (other projects build meanwhile).
+    projects: Mutex<BTreeMap<PathBuf, Arc<OnceLock<Built>>>>,
+    out: Option<PathBuf>,
+}
+
+impl Shared {
+    fn project(&self, toml: &Path) -> Arc<OnceLock<Built>> {
+        let cell = {
+            let mut map = match self.projects.lock() {
+                Ok(m) => m,
+                Err(poisoned) => poisoned.into_inner(),
+            };
+            Arc::clone(map.entry(toml.to_path_buf()).or_default())
+        };
+        cell.get_or_init(|| build_project(toml));
+        cell
+    }
+
+    fn scenario(&self, path: &Path) -> Report {
         let shown = path.display().to_string();
         let Some(toml) = find_above(path) else {
-            self.fail(
-                &shown,
-                &format!("{shown}:1:1: error[E324]: the scenario is in no project folder (no automat.toml at or above it)"),
+            let suite = parent_of(path);
+            return Report::new(&shown, suite).fail(
+                Status::Error,
+                format!("{shown}:1:1: error[E324]: the scenario is in no project folder (no automat.toml at or above it)"),
             );
-            return;
         };
+        let mut report = Report::new(&shown, parent_of(&toml));
         let text = match std::fs::read_to_string(path) {
             Ok(t) => t,
-            Err(e) => return self.fail(&shown, &format!("{shown}: {e}")),
+            Err(e) => return report.fail(Status::Error, format!("{shown}: {e}")),
         };
-        let file = self.map.add(shown.clone(), text.clone());
+        let mut map = SourceMap::new();
+        let file = map.add(shown.clone(), text.clone());
         let stem = path
             .file_stem()
             .and_then(|s| s.to_str())
@@ -160,45 +241,25 @@ impl Runner {
             .to_string();
         let scn = match automat_scenario::parse(&text, file, &stem) {
             Ok(s) => s,
-            Err(d) => {
-                let r = render::render_report(&self.map, &d);
-                return self.fail(&shown, &r);
-            }
+            Err(d) => return report.fail(Status::Error, render::render_report(&map, &d)),
         };
-        let built = match self.project(&toml) {
-            Ok((p, prog)) => (p.clone(), prog.clone()),
-            Err(e) => {
-                let e = e.clone();
-                return self.fail(&shown, &e);
-            }
+        let cell = self.project(&toml);
+        let built = match cell.get() {
+            Some(Ok(b)) => b,
+            Some(Err(e)) => return report.fail(Status::Error, e.clone()),
+            None => return report.fail(Status::Error, "the project was not built".into()),
         };
-        let (project, program) = built;
-        let title = format!("{shown} ({})", scn.name);
-        match automat_scenario::run::<std::io::Sink>(&program, &project, &scn, None) {
-            Err(d) => {
-                let r = render::render_report(&self.map, &d);
-                self.fail(&title, &r);
-            }
-            Ok(o) if o.failures.is_empty() => {
-                self.passed += 1;
-                println!("ok {title}");
-            }
+        report.project = Some(toml.clone());
+        report.warnings = built.warnings.clone();
+        report.title = format!("{shown} ({})", scn.name);
+        let (project, program) = (&built.project, &built.program);
+        match automat_scenario::run::<std::io::Sink>(program, project, &scn, None) {
+            Err(d) => report.fail(Status::Error, render::render_report(&map, &d)),
+            Ok(o) if o.failures.is_empty() => report,
             Ok(o) => {
-                let mut details = String::new();
-                for f in &o.failures {
-                    let at = format_duration(f.at_ns, false);
-                    if f.line > 0 {
-                        details.push_str(&format!("{shown}:{}: {}\n", f.line, f.what));
-                    } else {
-                        details.push_str(&format!("{shown}: {}\n", f.what));
-                    }
-                    details.push_str(&format!("  failed at {at}: {}\n", f.reason));
-                    if !f.values.is_empty() {
-                        details.push_str(&format!("  values: {}\n", f.values));
-                    }
-                }
-                details.push_str(&self.write_failure(path, &stem, &program, &project, &scn));
-                self.fail(&title, &details);
+                let mut details = automat_scenario::describe(&shown, &o.failures);
+                details.push_str(&self.write_failure(path, &stem, program, project, &scn));
+                report.fail(Status::Failed, details)
             }
         }
     }
@@ -234,18 +295,16 @@ impl Runner {
         }
     }
 
-    fn conformance(&mut self, path: &Path) {
+    fn conformance(&self, path: &Path) -> Report {
         let shown = path.display().to_string();
+        let report = Report::new(&shown, parent_of(path));
         let text = match std::fs::read(path) {
             Ok(b) => String::from_utf8_lossy(&b).into_owned(),
-            Err(e) => return self.fail(&shown, &format!("{shown}: {e}")),
+            Err(e) => return report.fail(Status::Error, format!("{shown}: {e}")),
         };
         // The interpreter runs it, as `automat run` would by default.
         match conformance::judge(&shown, &text, Backend::Interp) {
-            Verdict::Passed => {
-                self.passed += 1;
-                println!("ok {shown}");
-            }
+            Verdict::Passed => report,
             Verdict::Failed(f) => {
                 // The verdict starts with `NAME:`; the header line names it.
                 let details = f.strip_prefix(&format!("{shown}:\n")).unwrap_or(&f);
@@ -253,16 +312,136 @@ impl Runner {
                     .lines()
                     .map(|l| l.strip_prefix("    ").unwrap_or(l))
                     .collect();
-                self.fail(&shown, &details.join("\n"))
+                report.fail(Status::Failed, details.join("\n"))
             }
-            Verdict::Pending(why) => {
-                self.pending += 1;
-                println!("pending {why}");
+            Verdict::Pending(why) => report.fail(Status::Pending, format!("pending {why}")),
+            Verdict::KnownBug(why) => report.fail(Status::Pending, format!("known-bug {why}")),
+        }
+    }
+
+    fn item(&self, item: &Item) -> Report {
+        let t0 = Instant::now();
+        let mut r = match item {
+            Item::Scenario(p) => self.scenario(p),
+            Item::Conformance(p) => self.conformance(p),
+        };
+        r.secs = t0.elapsed().as_secs_f64();
+        r
+    }
+}
+
+/// Loads, compiles and binds a project (bindings checked here, so running
+/// its scenarios reports only the scenario's own diagnostics).
+fn build_project(toml: &Path) -> Built {
+    let mut map = SourceMap::new();
+    let p = automat_project::load(toml, &mut map).map_err(|d| render::render_report(&map, &d))?;
+    let mut warnings = String::new();
+    for w in &p.warnings {
+        warnings.push_str(w);
+        warnings.push('\n');
+    }
+    let mut prog = match build::compile(&p.sources, p.program.clone(), &p.libraries) {
+        Ok((prog, _warnings)) => prog,
+        Err(e) => return Err(e.text),
+    };
+    automat_project::tasks::apply(&p.tasks, &mut prog)
+        .map_err(|d| render::render_report(&map, &d))?;
+    if let (Some(spec), Some(plant)) = (
+        &p.plant,
+        p.new_plant().map_err(|d| render::render_report(&map, &d))?,
+    ) {
+        let (bindings, diags) = automat_project::bind(spec, plant.as_ref(), &prog);
+        if bindings.is_none() {
+            return Err(render::render_report(&map, &diags));
+        }
+    }
+    Ok(BuiltProject {
+        project: p,
+        program: prog,
+        warnings,
+    })
+}
+
+/// The folder of a file, as shown (the JUnit testsuite).
+fn parent_of(p: &Path) -> String {
+    p.parent()
+        .map(|d| d.display().to_string())
+        .filter(|d| !d.is_empty())
+        .unwrap_or_else(|| ".".into())
+}
+
+/// The default --jobs: the cores this process may use.
+fn default_jobs() -> usize {
+    std::thread::available_parallelism().map_or(1, usize::from)
+}
+
+/// Prints one report (and its project's warnings, the first time).
+fn print(r: &Report, warned: &mut BTreeSet<PathBuf>) {
+    if let Some(p) = &r.project {
+        if warned.insert(p.clone()) && !r.warnings.is_empty() {
+            eprint!("{}", r.warnings);
+        }
+    }
+    match r.status {
+        Status::Passed => println!("ok {}", r.title),
+        Status::Pending => println!("{}", r.details),
+        Status::Failed | Status::Error => {
+            println!(
+                "{} {}",
+                if r.status == Status::Failed {
+                    "FAILED"
+                } else {
+                    "ERROR"
+                },
+                r.title
+            );
+            for l in r.details.lines() {
+                println!("    {l}");
             }
-            Verdict::KnownBug(why) => {
-                self.pending += 1;
-                println!("known-bug {why}");
+        }
+    }
+}
+
+/// Runs the items on `jobs` threads; `each` sees the reports in item order
+/// as soon as they and every one before them are done.
+fn run_all(shared: &Shared, items: &[Item], jobs: usize, mut each: impl FnMut(Report)) {
+    let next = AtomicUsize::new(0);
+    let (tx, rx) = mpsc::channel::<(usize, Report)>();
+    std::thread::scope(|scope| {
+        for _ in 0..jobs.clamp(1, items.len().max(1)) {
+            let tx = tx.clone();
+            let next = &next;
+            // Interpreting a program may recurse deeply: the main thread's
+            // stack size, not a spawned thread's 2 MiB.
+            let spawned = std::thread::Builder::new()
+                .stack_size(8 << 20)
+                .spawn_scoped(scope, move || loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(item) = items.get(i) else { break };
+                    if tx.send((i, shared.item(item))).is_err() {
+                        break;
+                    }
+                });
+            if let Err(e) = spawned {
+                eprintln!("warning: cannot start a test thread: {e}");
             }
+        }
+        drop(tx);
+        let mut pending = BTreeMap::new();
+        let mut want = 0;
+        for (i, r) in rx.iter() {
+            pending.insert(i, r);
+            while let Some(r) = pending.remove(&want) {
+                each(r);
+                want += 1;
+            }
+        }
+    });
+    // No thread could start: run them here.
+    let done = next.load(Ordering::Relaxed).min(items.len());
+    if done == 0 {
+        for item in items {
+            each(shared.item(item));
         }
     }
 }
@@ -280,25 +459,49 @@ pub fn run(args: &TestArgs) -> Outcome {
             return Outcome::BadInput;
         }
     };
-    let mut r = Runner {
-        map: SourceMap::new(),
-        projects: BTreeMap::new(),
+    let jobs = args
+        .jobs
+        .and_then(|j| usize::try_from(j).ok())
+        .unwrap_or_else(default_jobs);
+    let shared = Shared {
+        projects: Mutex::new(BTreeMap::new()),
         out: args.out.clone(),
-        passed: 0,
-        failed: 0,
-        pending: 0,
     };
-    for item in &items {
-        match item {
-            Item::Scenario(p) => r.scenario(p),
-            Item::Conformance(p) => r.conformance(p),
+    let (mut passed, mut failed, mut errors, mut pending) = (0, 0, 0, 0);
+    let mut warned = BTreeSet::new();
+    let mut reports = Vec::new();
+    let started = Instant::now();
+    run_all(&shared, &items, jobs, |r| {
+        print(&r, &mut warned);
+        match r.status {
+            Status::Passed => passed += 1,
+            Status::Failed => failed += 1,
+            Status::Error => errors += 1,
+            Status::Pending => pending += 1,
+        }
+        if args.junit.is_some() {
+            reports.push(r);
+        }
+    });
+    if pending > 0 {
+        println!("{pending} pending or known bugs (not counted)");
+    }
+    if errors > 0 {
+        println!("{passed} passed, {failed} failed, {errors} errors");
+    } else {
+        println!("{passed} passed, {failed} failed");
+    }
+    if let Some(path) = &args.junit {
+        let cases: Vec<crate::junit::Case> = reports.iter().map(Report::case).collect();
+        let xml = crate::junit::write(&cases, started.elapsed().as_secs_f64());
+        if let Err(e) = std::fs::write(path, xml) {
+            eprintln!("error: --junit {}: {e}", path.display());
+            return Outcome::BadInput;
         }
     }
-    if r.pending > 0 {
-        println!("{} pending or known bugs (not counted)", r.pending);
-    }
-    println!("{} passed, {} failed", r.passed, r.failed);
-    if r.failed > 0 {
+    if errors > 0 {
+        Outcome::BadInput
+    } else if failed > 0 {
         Outcome::ProgramErrors
     } else {
         Outcome::Ok

@@ -34,6 +34,7 @@ mod cmd_test;
 mod draw;
 mod engines;
 mod files;
+mod junit;
 mod live;
 mod out;
 mod plot;

@@ -1,6 +1,10 @@
-//! `automat run PROJECT_FOLDER`: the project's program against its plant.
+//! `automat run PROJECT_FOLDER`: the project's program against its plant
+//! (a project without `[plant]`, and plain sources run with --scenario, run
+//! against no plant: the scenario drives the program's own variables).
 //!
-//! With --cycles, --duration or --scenario the run is in virtual time;
+//! With --scenario its timed actions and reactions drive the run and its
+//! expectations are judged as `automat test` does (failures on stderr,
+//! exit 1). With --cycles, --duration or --scenario the run is in virtual time;
 //! otherwise in real time (`--speed N`: N× faster), with a status view and
 //! typed commands (see [`crate::live`]). `--print` and `--trace` take
 //! variable paths, signal names of the model and `plant.<quantity>`.
@@ -20,6 +24,7 @@ use automat_runtime::trace::{csv_cell, Column};
 use automat_runtime::{run_safe, ClockMode, Executor, Limit, RunConfig, RunEnd, ScanObserver};
 use automat_scenario::ast::Name;
 use automat_scenario::check::{Ref, Scope};
+use automat_scenario::{Judge, NoPlant, Prepared};
 use std::cell::RefCell;
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -81,15 +86,20 @@ fn trace_cols(
     Ok(out)
 }
 
-/// Writes one CSV row per scan, and drives the live view.
+/// Writes one CSV row per scan, judges the scenario, and drives the live
+/// view.
 struct Observer {
     sim: Rc<RefCell<Sim>>,
     trace: Option<(Vec<TraceCol>, BufWriter<File>)>,
     live: Option<Live>,
+    judge: Option<Judge>,
 }
 
 impl ScanObserver for Observer {
     fn after_scan(&mut self, now: i64, image: &[u8]) -> Result<(), String> {
+        if let Some(j) = &mut self.judge {
+            j.after_scan(now, image, &self.sim);
+        }
         if let Some((cols, out)) = &mut self.trace {
             let sim = self.sim.borrow();
             let mut line = automat_iec::format::format_duration(now, false);
@@ -149,39 +159,79 @@ fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
     };
     automat_project::tasks::apply(&project.tasks, &mut program).map_err(|d| fail(&map, &d))?;
     crate::engines::default_watchdog(&mut program, args.watchdog);
-    let plant = match project.new_plant() {
-        Ok(Some(p)) => p,
-        Ok(None) => {
-            eprintln!(
-                "error: {}: the project has no [plant]; run its sources with `automat run {}/*.st`",
-                toml.display(),
-                project.dir.display()
-            );
-            return Err(Outcome::BadInput);
-        }
-        Err(d) => return Err(fail(&map, &d)),
-    };
+    // Without [plant] the program runs against no plant.
+    let plant = project.new_plant().map_err(|d| fail(&map, &d))?;
     Ok(Loaded {
         map,
         project,
         program,
-        plant,
+        plant: plant.unwrap_or_else(|| Box::new(NoPlant)),
     })
 }
 
 pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
+    let loaded = load(args, toml)?;
+    run_loaded(args, loaded, true)
+}
+
+/// `automat run FILE.st ... --scenario S.scn`: plain sources (no
+/// automat.toml) against no plant, the scenario driving and checking the
+/// program's variables.
+pub fn run_sources(args: &RunArgs) -> Result<Outcome, Outcome> {
+    if args.cycle_time.is_some_and(|c| c <= 0) {
+        eprintln!("error: --cycle-time must be longer than 0");
+        return Err(Outcome::BadInput);
+    }
+    let mut program = crate::cmd_run::compile(args)?;
+    crate::engines::default_watchdog(&mut program, args.watchdog);
+    let dir = args
+        .paths
+        .first()
+        .and_then(|p| p.parent())
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
+    let project = Project {
+        dir,
+        file: FileId(0),
+        name: String::new(),
+        description: String::new(),
+        sources: args.paths.clone(),
+        program: args.program.clone(),
+        cycle_time_ns: 10_000_000,
+        libraries: args.libs.clone(),
+        plant: None,
+        retain: automat_project::RetainSpec::default(),
+        safe_state: Vec::new(),
+        users: Vec::new(),
+        tasks: Vec::new(),
+        warnings: Vec::new(),
+    };
+    let loaded = Loaded {
+        map: SourceMap::new(),
+        project,
+        program,
+        plant: Box::new(NoPlant),
+    };
+    run_loaded(args, loaded, false)
+}
+
+fn run_loaded(args: &RunArgs, loaded: Loaded, from_project: bool) -> Result<Outcome, Outcome> {
     let Loaded {
         mut map,
         project,
         program,
         plant,
-    } = load(args, toml)?;
-    let spec = project.plant.clone().ok_or(Outcome::BadInput)?;
-    let (bindings, diags) = bind(&spec, plant.as_ref(), &program);
-    if !diags.is_empty() {
-        eprint!("{}", render::render_report(&map, &diags));
-    }
-    let bindings = bindings.ok_or(Outcome::ProgramErrors)?;
+    } = loaded;
+    let (bindings, seed) = match &project.plant {
+        Some(spec) => {
+            let (bindings, diags) = bind(spec, plant.as_ref(), &program);
+            if !diags.is_empty() {
+                eprint!("{}", render::render_report(&map, &diags));
+            }
+            (bindings.ok_or(Outcome::ProgramErrors)?, spec.seed)
+        }
+        None => (Vec::new(), 1),
+    };
     let scope = Scope {
         program: &program,
         plant: plant.as_ref(),
@@ -190,26 +240,38 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
     let safe = automat_project::safe::build(
         &project,
         &program,
-        Some((plant.as_ref(), bindings.as_slice())),
+        project
+            .plant
+            .is_some()
+            .then_some((plant.as_ref(), bindings.as_slice())),
     )
     .map_err(|d| fail(&map, &d))?;
     let prints = refs(&scope, &args.print, "--print")?;
     let traced = trace_cols(&scope, &program, &crate::cmd_run::split_trace(&args.trace))?;
     let mut actions = Vec::new();
     let mut scenario_ns = None;
+    let mut judge = None;
+    let mut seed = seed;
+    let mut scenario_shown = String::new();
     if let Some(path) = &args.scenario {
         let text = std::fs::read_to_string(path).map_err(|e| {
             eprintln!("error: {}: {e}", path.display());
             Outcome::BadInput
         })?;
-        let file = map.add(path.display().to_string(), text.clone());
+        scenario_shown = path.display().to_string();
+        let file = map.add(scenario_shown.clone(), text.clone());
         let scn = automat_scenario::parse(&text, file, "scenario").map_err(|d| fail(&map, &d))?;
-        for a in &scn.actions {
-            actions.extend(scope.action(a).map_err(|d| fail(&map, &[d]))?);
-        }
+        let Prepared {
+            actions: a,
+            judge: j,
+        } = automat_scenario::prepare(&scope, &scn).map_err(|d| fail(&map, &d))?;
+        actions = a;
+        judge = Some(j);
+        // The scenario's seed, as `automat test` uses it.
+        seed = scn.seed.unwrap_or(seed);
         scenario_ns = Some(scn.duration_ns);
     }
-    let mut sim = Sim::new(plant, bindings, spec.seed);
+    let mut sim = Sim::new(plant, bindings, seed);
     for (at, a) in actions {
         sim.schedule(at, a);
     }
@@ -258,7 +320,7 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
         None => None,
     };
     // The RETAIN path is checked before anything starts (the live view included).
-    let retain = RetainCfg::of(args, Some(&project.retain));
+    let retain = RetainCfg::of(args, from_project.then_some(&project.retain));
     let mut engine = crate::engines::build(program.clone(), args.engine);
     engine.set_budget(args.max_instructions);
     retain_run::start(&mut engine, retain.as_ref(), args.cold)?;
@@ -268,8 +330,12 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
         sim: Rc::clone(&sim),
         trace,
         live,
+        judge,
     };
     let mut exec = PlantExec::new(engine, Rc::clone(&sim));
+    if let Some(j) = &mut observer.judge {
+        j.start(exec.image(), &sim.borrow());
+    }
     let cfg = RunConfig {
         cycle_time_ns: args.cycle_time.unwrap_or(project.cycle_time_ns),
         clock,
@@ -321,6 +387,49 @@ pub fn run(args: &RunArgs, toml: &Path) -> Result<Outcome, Outcome> {
     } else {
         Outcome::BadInput
     };
+    if let Some(j) = observer.judge.take() {
+        // A run stopped by a fault or a signal keeps the verdicts reached;
+        // what was still open is not judged.
+        // A run cut short of the scenario's duration (--cycles, a shorter
+        // --duration) judges only what was decided before its end.
+        let scn_ns = scenario_ns.unwrap_or(0);
+        let covered = match cfg.limit {
+            Limit::Duration(d) => d >= scn_ns,
+            Limit::Cycles(n) => {
+                i64::try_from(n).map_or(true, |n| n.saturating_mul(cfg.cycle_time_ns) >= scn_ns)
+            }
+            Limit::Unbounded => true,
+        };
+        let complete = covered && matches!(report.end, RunEnd::Limit | RunEnd::TimeExhausted);
+        let open = j.open();
+        let failures = if complete {
+            j.finish(exec.image(), &sim.borrow())
+        } else {
+            j.failures()
+        };
+        if !covered && open > 0 {
+            eprintln!(
+                "scenario {scenario_shown}: the run ends before the scenario's duration ({}): {open} expectation{} not judged",
+                automat_iec::format::format_duration(scn_ns, false),
+                if open == 1 { "" } else { "s" }
+            );
+        }
+        if failures.is_empty() {
+            if complete {
+                eprintln!("scenario {scenario_shown}: every expectation held");
+            }
+        } else {
+            eprintln!(
+                "scenario {scenario_shown}: {} expectation{} failed",
+                failures.len(),
+                if failures.len() == 1 { "" } else { "s" }
+            );
+            eprint!("{}", automat_scenario::describe(&scenario_shown, &failures));
+            if matches!(outcome, Outcome::Ok) {
+                outcome = Outcome::ProgramErrors;
+            }
+        }
+    }
     if let Some((_, mut w)) = observer.trace.take() {
         if let Err(e) = w.flush() {
             eprintln!("error: trace: {e}");

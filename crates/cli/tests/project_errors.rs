@@ -49,7 +49,8 @@ fn project_file_errors_point_into_automat_toml() {
 #[test]
 fn scenario_errors_point_into_the_scenario() {
     let (code, out, _) = automat(&["test", "scenarios_e32x", "orphan_e324"]);
-    assert_eq!(code, Some(1));
+    // Scenarios that cannot run are errors: exit 2.
+    assert_eq!(code, Some(2));
     for want in [
         "scenarios_e32x/scenarios/e320_syntax.scn:2:7: error[E320]: unknown action `jump`",
         "scenarios_e32x/scenarios/e321_unknown.scn:2:14: error[E321]: `Nothing` is no signal of the crane model",
@@ -59,7 +60,32 @@ fn scenario_errors_point_into_the_scenario() {
     ] {
         assert!(out.lines().any(|l| l.trim_start().starts_with(want)), "want `{want}` in\n{out}");
     }
-    assert_eq!(out.lines().last(), Some("0 passed, 5 failed"));
+    assert_eq!(out.lines().last(), Some("0 passed, 0 failed, 5 errors"));
+}
+
+/// A project without [plant]: what needs a plant is E325, functions out of
+/// place E326, arithmetic on the wrong types E322; every diagnostic of a
+/// file is reported, in the file's order.
+#[test]
+fn scenario_errors_without_a_plant() {
+    let (code, out, _) = automat(&["test", "no_plant_e325_e326", "--jobs", "3"]);
+    assert_eq!(code, Some(2), "{out}");
+    let mut last = 0;
+    for want in [
+        "ERROR no_plant_e325_e326/scenarios/e322_arith.scn",
+        "no_plant_e325_e326/scenarios/e322_arith.scn:2:15: error[E322]: `+` does not apply to a TIME and a number",
+        "no_plant_e325_e326/scenarios/e322_arith.scn:3:6: error[E322]: `+` does not apply to BOOL and a number",
+        "ERROR no_plant_e325_e326/scenarios/e325_needs_plant.scn",
+        "no_plant_e325_e326/scenarios/e325_needs_plant.scn:2:13: error[E325]: `stuck` needs a plant model, and the project has no [plant]",
+        "no_plant_e325_e326/scenarios/e325_needs_plant.scn:3:14: error[E325]: `plant.x` needs a plant model, and the project has no [plant]",
+        "no_plant_e325_e326/scenarios/e326_misplaced.scn:2:8: error[E326]: count(...) counts over a window: use it in `expect C during A..B`, `expect at T C` or `expect always C [during A..B]`",
+        "no_plant_e325_e326/scenarios/e326_misplaced.scn:3:20: error[E326]: prev(...) inside rise, fall, change or prev",
+    ] {
+        let at = out.lines().position(|l| l.trim_start().starts_with(want));
+        assert!(at.is_some_and(|i| i >= last), "want `{want}` (in this order) in\n{out}");
+        last = at.unwrap_or(0);
+    }
+    assert_eq!(out.lines().last(), Some("0 passed, 0 failed, 3 errors"));
 }
 
 #[test]

@@ -169,10 +169,10 @@ fn test_skips_marked_hidden_and_target_folders() {
         "skipped ./marked (.automat-test-skip)\n0 passed, 0 failed\n"
     );
     // Named on the command line, the marked folder is searched (and its
-    // scenario fails: it is in no project).
+    // scenario cannot run: it is in no project).
     let out = automat(&dir, &["test", "marked"]);
-    assert_eq!(out.status.code(), Some(1));
-    assert!(text(&out.stdout).starts_with("FAILED marked/wrong.scn\n"));
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stdout).starts_with("ERROR marked/wrong.scn\n"));
     // The rule is in the help.
     let help = text(&automat(&dir, &["test", "--help"]).stdout);
     assert!(

@@ -136,10 +136,13 @@ impl Sim {
     /// scheduled for the same time). An action in the past runs at the
     /// next sync.
     pub fn schedule(&mut self, at_ns: i64, action: Action) {
-        let pos = self.actions[self.next_action..]
+        // Searched from the end: scenario reactions schedule at the latest
+        // time, so a long run stays linear.
+        let pending = self.actions.get(self.next_action..).unwrap_or(&[]);
+        let pos = pending
             .iter()
-            .position(|(t, _)| *t > at_ns)
-            .map_or(self.actions.len(), |p| p + self.next_action);
+            .rposition(|(t, _)| *t <= at_ns)
+            .map_or(self.next_action, |p| p + self.next_action + 1);
         self.actions.insert(pos, (at_ns, action));
     }
 

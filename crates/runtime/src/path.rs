@@ -220,7 +220,17 @@ fn root(program: &Program, sels: &[Sel], scoped: usize) -> Option<(usize, Walker
             Sel::Index(_) => None,
         })
         .collect();
-    for k in (1..=names.len()).rev() {
+    // No declared path has more names than the deepest symbol: longer
+    // prefixes are not tried (a hostile `a.a.a...` of 20,000 names would
+    // otherwise join 20,000 prefixes, quadratic in its length).
+    let deepest = program
+        .symbols
+        .entries()
+        .iter()
+        .map(|e| e.path.bytes().filter(|&b| b == b'.').count() + 1)
+        .max()
+        .unwrap_or(0);
+    for k in (1..=names.len().min(deepest)).rev() {
         let joined = names.get(..k)?.join(".");
         let Some(e) = program.symbols.get(&joined) else {
             continue;

@@ -4,9 +4,16 @@
 //!
 //! A name is, in this order: `plant.<quantity>`; a signal of the model
 //! (its bound variable when bound, so conditions see what the PLC sees;
-//! the model's value otherwise); a variable path of the program.
+//! the model's value otherwise); a variable path of the program (also a
+//! direct address `%IX0.1`, or a dialect's operand such as FST `I0.1`).
+//!
+//! A project without `[plant]` is checked against [`NoPlant`]: every name
+//! is a variable, `press`/`release`/`set` write variables, and what needs
+//! a model (`plant.` quantities, `stuck`, `unstick`, `noise`, `plant`
+//! commands) is E325. Functions out of place (`count` outside a window,
+//! an event inside `rise`/`prev`) are E326.
 
-use crate::ast::{self, ActionKind, CmpOp, Expr, Lit, LogicOp, Name};
+use crate::ast::{self, ActionKind, ArithOp, CmpOp, Expr, Func, Lit, LogicOp, Name};
 use automat_base::{Code, Diagnostic, Span};
 use automat_iec::Elementary as E;
 use automat_ir::Program;
@@ -39,7 +46,7 @@ pub struct Ref {
     pub ty: Ty,
 }
 
-/// A resolved condition.
+/// A resolved condition or value.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Cond {
     Ref(usize),
@@ -48,6 +55,68 @@ pub enum Cond {
     Not(Box<Cond>),
     Logic(LogicOp, Box<Cond>, Box<Cond>),
     Cmp(CmpOp, Box<Cond>, Box<Cond>),
+    Arith(ArithOp, Box<Cond>, Box<Cond>),
+    Neg(Box<Cond>),
+    Abs(Box<Cond>),
+    Min(Box<Cond>, Box<Cond>),
+    Max(Box<Cond>, Box<Cond>),
+    /// The value after the previous scan (before the first: the initial
+    /// values).
+    Prev(Box<Cond>),
+    Rise(Box<Cond>),
+    Fall(Box<Cond>),
+    Change(Box<Cond>),
+    /// The counter of the expectation's `count(...)` number n.
+    Count(usize),
+}
+
+/// A project without a plant: no signals, no quantities.
+pub struct NoPlant;
+
+impl Plant for NoPlant {
+    fn name(&self) -> &'static str {
+        "none"
+    }
+    fn signals(&self) -> &'static [automat_plant::Signal] {
+        &[]
+    }
+    fn quantities(&self) -> &'static [automat_plant::Quantity] {
+        &[]
+    }
+    fn set(&mut self, _: usize, _: Value) {}
+    fn get(&self, _: usize) -> Value {
+        Value::Bool(false)
+    }
+    fn quantity(&self, _: usize) -> f64 {
+        f64::NAN
+    }
+    fn step_ns(&self) -> i64 {
+        // Nothing to integrate: one step per scan at most.
+        i64::MAX / 4
+    }
+    fn step(&mut self, _: i64, _: &mut automat_plant::Rng) {}
+}
+
+/// Where the checker is in an expression: what it may contain there.
+#[derive(Default)]
+pub struct Ctx {
+    /// The `count(...)` arguments met so far; `None`: no count allowed
+    /// (the expectation has no window to count over).
+    pub counts: Option<Vec<Cond>>,
+    /// Inside `rise`, `fall`, `change` or `prev` (values of one scan).
+    in_temporal: bool,
+    /// Inside `count`.
+    in_count: bool,
+}
+
+impl Ctx {
+    /// A context where `count(...)` counts over the expectation's window.
+    pub fn counting() -> Ctx {
+        Ctx {
+            counts: Some(Vec::new()),
+            ..Ctx::default()
+        }
+    }
 }
 
 /// What the names of a scenario are resolved against.
@@ -95,9 +164,27 @@ impl Scope<'_> {
             .position(|s| s.name.eq_ignore_ascii_case(name))
     }
 
+    /// Whether the project has no plant ([`NoPlant`]).
+    pub fn plantless(&self) -> bool {
+        self.plant.signals().is_empty() && self.plant.quantities().is_empty()
+    }
+
+    /// E325: `what` needs a plant model, and the project has none.
+    fn needs_plant(&self, span: Span, what: &str) -> Diagnostic {
+        Diagnostic::error(
+            Code::E325,
+            span,
+            format!("{what} needs a plant model, and the project has no [plant]"),
+        )
+        .with_note("without a plant, a scenario sets and presses the program's own variables (`set x = 5`, `press Start for 200ms`) and checks them")
+    }
+
     /// Resolves a name used in a condition.
     pub fn reference(&self, n: &Name) -> Result<Ref, Diagnostic> {
         let unknown = |why: String| Diagnostic::error(Code::E321, n.span, why);
+        if n.text.starts_with("plant.") && self.plantless() {
+            return Err(self.needs_plant(n.span, &format!("`{}`", n.text)));
+        }
         if let Some(q) = n.text.strip_prefix("plant.") {
             let quantities = self.plant.quantities();
             let i = quantities
@@ -135,13 +222,23 @@ impl Scope<'_> {
                 },
             });
         }
-        let place = resolve(self.program, &n.text).map_err(|e| {
-            unknown(format!(
-                "`{}` is no signal of the {} model, no `plant.` quantity and no variable: {e}",
-                n.text,
-                self.plant.name()
-            ))
-        })?;
+        let place = resolve(self.program, &n.text)
+            .or_else(|e| {
+                pl7_object(&n.text)
+                    .and_then(|alias| resolve(self.program, &alias).ok())
+                    .ok_or(e)
+            })
+            .map_err(|e| {
+                if self.plantless() {
+                    unknown(format!("`{}` is no variable of the program: {e}", n.text))
+                } else {
+                    unknown(format!(
+                    "`{}` is no signal of the {} model, no `plant.` quantity and no variable: {e}",
+                    n.text,
+                    self.plant.name()
+                ))
+                }
+            })?;
         let ty = place_ty(&place).ok_or_else(|| {
             mismatch(
                 n.span,
@@ -158,18 +255,54 @@ impl Scope<'_> {
         })
     }
 
-    /// Resolves and type-checks a condition; `refs` collects the names.
+    /// Resolves and type-checks a condition without `count(...)`; `refs`
+    /// collects the names.
     pub fn condition(&self, e: &Expr, refs: &mut Vec<Ref>) -> Result<Cond, Diagnostic> {
-        let (c, ty, span) = self.typed(e, refs)?;
+        self.condition_in(e, refs, &mut Ctx::default())
+    }
+
+    /// [`Scope::condition`] in a context (`Ctx::counting()` collects the
+    /// arguments of `count(...)`).
+    pub fn condition_in(
+        &self,
+        e: &Expr,
+        refs: &mut Vec<Ref>,
+        ctx: &mut Ctx,
+    ) -> Result<Cond, Diagnostic> {
+        let (c, ty, span) = self.typed(e, refs, ctx)?;
         if ty != Some(Ty::Bool) {
             return Err(mismatch(span, "a condition must be BOOL".into()));
         }
         Ok(c)
     }
 
+    /// A value of any type (what `stable` watches).
+    pub fn value_in(
+        &self,
+        e: &Expr,
+        refs: &mut Vec<Ref>,
+        ctx: &mut Ctx,
+    ) -> Result<Cond, Diagnostic> {
+        let (c, ty, span) = self.typed(e, refs, ctx)?;
+        if ty.is_none() {
+            return Err(mismatch(
+                span,
+                "an enumeration value alone is no value to watch".into(),
+            ));
+        }
+        Ok(c)
+    }
+
     /// The condition, its type (`None` for an enumeration literal, typed by
-    /// the other side of its comparison) and its span.
-    fn typed(&self, e: &Expr, refs: &mut Vec<Ref>) -> Result<(Cond, Option<Ty>, Span), Diagnostic> {
+    /// the other side of its comparison) and its span. Recursion is bounded
+    /// by the parser's nesting limit (`parse::MAX_NESTING`) and operand
+    /// count (`parse::MAX_TERMS`).
+    fn typed(
+        &self,
+        e: &Expr,
+        refs: &mut Vec<Ref>,
+        ctx: &mut Ctx,
+    ) -> Result<(Cond, Option<Ty>, Span), Diagnostic> {
         Ok(match e {
             Expr::Ref(n) => {
                 let r = self.reference(n)?;
@@ -191,15 +324,15 @@ impl Scope<'_> {
                 Lit::Enum(..) => (Cond::Bool(false), None, *span),
             },
             Expr::Not(x) => {
-                let (c, ty, span) = self.typed(x, refs)?;
+                let (c, ty, span) = self.typed(x, refs, ctx)?;
                 if ty != Some(Ty::Bool) {
                     return Err(mismatch(span, "NOT needs a BOOL operand".into()));
                 }
                 (Cond::Not(Box::new(c)), Some(Ty::Bool), span)
             }
             Expr::Logic(op, a, b) => {
-                let (ca, ta, sa) = self.typed(a, refs)?;
-                let (cb, tb, sb) = self.typed(b, refs)?;
+                let (ca, ta, sa) = self.typed(a, refs, ctx)?;
+                let (cb, tb, sb) = self.typed(b, refs, ctx)?;
                 for (t, s) in [(&ta, sa), (&tb, sb)] {
                     if *t != Some(Ty::Bool) {
                         return Err(mismatch(s, "AND, OR and XOR need BOOL operands".into()));
@@ -212,8 +345,8 @@ impl Scope<'_> {
                 )
             }
             Expr::Cmp(op, a, b) => {
-                let (ca, ta, sa) = self.typed(a, refs)?;
-                let (cb, tb, sb) = self.typed(b, refs)?;
+                let (ca, ta, sa) = self.typed(a, refs, ctx)?;
+                let (cb, tb, sb) = self.typed(b, refs, ctx)?;
                 let span = sa.to(sb);
                 let (ca, cb) = match (&ta, &tb) {
                     (Some(Ty::Enum(..)), None) => (ca, enum_value(b, ta.as_ref(), sb)?),
@@ -242,6 +375,152 @@ impl Scope<'_> {
                     span,
                 )
             }
+            Expr::Arith(op, a, b) => {
+                let (ca, ta, sa) = self.typed(a, refs, ctx)?;
+                let (cb, tb, sb) = self.typed(b, refs, ctx)?;
+                let span = sa.to(sb);
+                let ty = arith_type(*op, ta.as_ref(), tb.as_ref()).ok_or_else(|| {
+                    mismatch(
+                        span,
+                        format!(
+                            "`{}` does not apply to {} and {} (arithmetic is on numbers and TIMEs: TIME ± TIME, TIME * or / a number, TIME / TIME)",
+                            op.text(),
+                            ta.as_ref().map_or("an enumeration value".into(), ty_name),
+                            tb.as_ref().map_or("an enumeration value".into(), ty_name)
+                        ),
+                    )
+                })?;
+                (Cond::Arith(*op, Box::new(ca), Box::new(cb)), Some(ty), span)
+            }
+            Expr::Neg(x, minus) => {
+                let (c, ty, span) = self.typed(x, refs, ctx)?;
+                if !matches!(ty, Some(Ty::Num | Ty::Time)) {
+                    return Err(mismatch(
+                        minus.to(span),
+                        "a minus sign needs a number or a TIME".into(),
+                    ));
+                }
+                (Cond::Neg(Box::new(c)), ty, minus.to(span))
+            }
+            Expr::Call(f, args, span) => self.call(*f, args, *span, refs, ctx)?,
+        })
+    }
+
+    fn call(
+        &self,
+        f: Func,
+        args: &[Expr],
+        span: Span,
+        refs: &mut Vec<Ref>,
+        ctx: &mut Ctx,
+    ) -> Result<(Cond, Option<Ty>, Span), Diagnostic> {
+        let misplaced = |why: &str| Diagnostic::error(Code::E326, span, why.to_string());
+        let temporal = f.is_event() || f == Func::Prev;
+        if temporal && ctx.in_temporal {
+            return Err(misplaced(&format!(
+                "{}(...) inside rise, fall, change or prev: they compare one scan with the one before, and take plain values",
+                f.name()
+            )));
+        }
+        if f == Func::Count {
+            if ctx.in_temporal || ctx.in_count {
+                return Err(misplaced(
+                    "count(...) inside rise, fall, change, prev or count: count only at the top of a condition",
+                ));
+            }
+            if ctx.counts.is_none() {
+                return Err(misplaced(
+                    "count(...) counts over a window: use it in `expect C during A..B`, `expect at T C` or `expect always C [during A..B]`",
+                ));
+            }
+        }
+        let (outer_t, outer_c) = (ctx.in_temporal, ctx.in_count);
+        ctx.in_temporal |= temporal;
+        ctx.in_count |= f == Func::Count;
+        let mut typed = Vec::with_capacity(args.len());
+        let mut result = Ok(());
+        for a in args {
+            match self.typed(a, refs, ctx) {
+                Ok(t) => typed.push(t),
+                Err(d) => {
+                    result = Err(d);
+                    break;
+                }
+            }
+        }
+        ctx.in_temporal = outer_t;
+        ctx.in_count = outer_c;
+        result?;
+        let mut it = typed.into_iter();
+        let Some((c, ty, sa)) = it.next() else {
+            return Err(misplaced("a function without its argument"));
+        };
+        let second = it.next();
+        let need = |ok: bool, what: &str| {
+            if ok {
+                Ok(())
+            } else {
+                Err(mismatch(sa, format!("{}(...) needs {what}", f.name())))
+            }
+        };
+        let b = Box::new(c);
+        Ok(match f {
+            Func::Rise | Func::Fall => {
+                need(ty == Some(Ty::Bool), "a BOOL condition")?;
+                let c = if f == Func::Rise {
+                    Cond::Rise(b)
+                } else {
+                    Cond::Fall(b)
+                };
+                (c, Some(Ty::Bool), span)
+            }
+            Func::Change => {
+                need(ty.is_some(), "a value (a name or an expression)")?;
+                (Cond::Change(b), Some(Ty::Bool), span)
+            }
+            Func::Prev => {
+                need(ty.is_some(), "a value (a name or an expression)")?;
+                (Cond::Prev(b), ty, span)
+            }
+            Func::Count => {
+                need(ty == Some(Ty::Bool), "a BOOL condition (such as rise(x))")?;
+                let counts = ctx.counts.get_or_insert_with(Vec::new);
+                counts.push(*b);
+                (Cond::Count(counts.len() - 1), Some(Ty::Num), span)
+            }
+            Func::Abs => {
+                need(matches!(ty, Some(Ty::Num | Ty::Time)), "a number or a TIME")?;
+                (Cond::Abs(b), ty, span)
+            }
+            Func::Min | Func::Max => {
+                let Some((c2, ty2, s2)) = second else {
+                    return Err(misplaced("min and max take two arguments"));
+                };
+                need(matches!(ty, Some(Ty::Num | Ty::Time)), "numbers or TIMEs")?;
+                if ty2 != ty {
+                    return Err(mismatch(
+                        s2,
+                        format!("{}(...) needs two values of one type", f.name()),
+                    ));
+                }
+                let c = if f == Func::Min {
+                    Cond::Min(b, Box::new(c2))
+                } else {
+                    Cond::Max(b, Box::new(c2))
+                };
+                (c, ty, span)
+            }
+        })
+    }
+
+    /// A condition that anchors a window or a reaction: an event, or a
+    /// plain condition meaning its rising edge.
+    pub fn event(&self, e: &Expr, refs: &mut Vec<Ref>) -> Result<Cond, Diagnostic> {
+        let c = self.condition(e, refs)?;
+        Ok(if c.has_event() {
+            c
+        } else {
+            Cond::Rise(Box::new(c))
         })
     }
 
@@ -331,6 +610,18 @@ impl Scope<'_> {
             })
         };
         let sig = |i: usize| self.plant.signals().get(i).copied();
+        if self.plantless() {
+            let needs = match &a.kind {
+                ActionKind::Stuck(n, ..) => Some((n.span, "`stuck`")),
+                ActionKind::Unstick(n) => Some((n.span, "`unstick`")),
+                ActionKind::Noise(n, _) => Some((n.span, "`noise`")),
+                ActionKind::Plant(n, _) => Some((n.span, "a `plant` command")),
+                _ => None,
+            };
+            if let Some((span, what)) = needs {
+                return Err(self.needs_plant(span, what));
+            }
+        }
         Ok(match &a.kind {
             ActionKind::Press(n, dur) => self.press(n, t, true, *dur)?,
             ActionKind::Release(n) => self.press(n, t, false, None)?,
@@ -393,6 +684,38 @@ impl Scope<'_> {
             )],
         })
     }
+}
+
+/// The variable a PL7 object stands for in a program of the `pl7` dialect
+/// (`crates/dialect/src/pl7`): a step's activity `%Xi` and time `%Xi.T`
+/// are the global mirrors `__pl7_x_i` / `__pl7_t_i`, a system bit `%Si` and
+/// word `%SWi` the globals `_Si` / `_SWi`.
+fn pl7_object(text: &str) -> Option<String> {
+    let up = text.to_ascii_uppercase();
+    let rest = up.strip_prefix('%')?;
+    let digits = |s: &str| !s.is_empty() && s.len() <= 5 && s.bytes().all(|b| b.is_ascii_digit());
+    if let Some(step) = rest.strip_prefix('X') {
+        let (n, time) = match step.split_once('.') {
+            Some((n, "T")) => (n, true),
+            Some(_) => return None,
+            None => (step, false),
+        };
+        return digits(n).then(|| format!("__pl7_{}_{n}", if time { 't' } else { 'x' }));
+    }
+    let word = rest.strip_prefix("SW").or_else(|| rest.strip_prefix('S'))?;
+    digits(word).then(|| format!("_{rest}"))
+}
+
+/// The type of `a op b`, `None` when the operator does not apply.
+fn arith_type(op: ArithOp, a: Option<&Ty>, b: Option<&Ty>) -> Option<Ty> {
+    use ArithOp::*;
+    Some(match (op, a?, b?) {
+        (_, Ty::Num, Ty::Num) => Ty::Num,
+        (Add | Sub, Ty::Time, Ty::Time) => Ty::Time,
+        (Mul, Ty::Time, Ty::Num) | (Mul, Ty::Num, Ty::Time) | (Div, Ty::Time, Ty::Num) => Ty::Time,
+        (Div, Ty::Time, Ty::Time) => Ty::Num,
+        _ => return None,
+    })
 }
 
 /// An enumeration literal compared with a value of type `ty`, as its number.
@@ -471,15 +794,60 @@ pub fn show_f64(x: f64) -> String {
     }
 }
 
+/// The values a condition is evaluated on: after this scan, after the
+/// previous one, and the expectation's counters.
+#[derive(Clone, Copy)]
+pub struct Frame<'a> {
+    pub now: &'a [Val],
+    pub prev: &'a [Val],
+    pub counts: &'a [f64],
+}
+
+impl<'a> Frame<'a> {
+    /// Values of one scan (no previous scan, no counters).
+    pub fn of(vals: &'a [Val]) -> Frame<'a> {
+        Frame {
+            now: vals,
+            prev: vals,
+            counts: &[],
+        }
+    }
+    fn before(self) -> Frame<'a> {
+        Frame {
+            now: self.prev,
+            ..self
+        }
+    }
+}
+
+/// Whether two values are the same (NaN is the same as NaN: a value that
+/// cannot be read does not change).
+pub fn same(a: Val, b: Val) -> bool {
+    match (a, b) {
+        (Val::B(x), Val::B(y)) => x == y,
+        (Val::N(x), Val::N(y)) => x == y || (x.is_nan() && y.is_nan()),
+        _ => false,
+    }
+}
+
+fn num(v: Val) -> f64 {
+    match v {
+        Val::B(b) => f64::from(u8::from(b)),
+        Val::N(x) => x,
+    }
+}
+
 impl Cond {
-    pub fn eval(&self, vals: &[Val]) -> Val {
+    /// The value on the frame. Division by zero gives ±infinity or NaN (a
+    /// comparison with NaN is FALSE); `MOD` by zero gives 0, as in IEC.
+    pub fn eval(&self, f: Frame) -> Val {
         match self {
-            Cond::Ref(i) => vals.get(*i).copied().unwrap_or(Val::B(false)),
+            Cond::Ref(i) => f.now.get(*i).copied().unwrap_or(Val::B(false)),
             Cond::Bool(b) => Val::B(*b),
             Cond::Num(x) => Val::N(*x),
-            Cond::Not(x) => Val::B(!x.truth(vals)),
+            Cond::Not(x) => Val::B(!x.truth(f)),
             Cond::Logic(op, a, b) => {
-                let (a, b) = (a.truth(vals), b.truth(vals));
+                let (a, b) = (a.truth(f), b.truth(f));
                 Val::B(match op {
                     LogicOp::And => a && b,
                     LogicOp::Or => a || b,
@@ -487,11 +855,7 @@ impl Cond {
                 })
             }
             Cond::Cmp(op, a, b) => {
-                let num = |v: Val| match v {
-                    Val::B(b) => f64::from(u8::from(b)),
-                    Val::N(x) => x,
-                };
-                let (x, y) = (num(a.eval(vals)), num(b.eval(vals)));
+                let (x, y) = (num(a.eval(f)), num(b.eval(f)));
                 Val::B(match op {
                     CmpOp::Eq => x == y,
                     CmpOp::Ne => x != y,
@@ -501,13 +865,74 @@ impl Cond {
                     CmpOp::Ge => x >= y,
                 })
             }
+            Cond::Arith(op, a, b) => {
+                let (x, y) = (num(a.eval(f)), num(b.eval(f)));
+                Val::N(match op {
+                    ArithOp::Add => x + y,
+                    ArithOp::Sub => x - y,
+                    ArithOp::Mul => x * y,
+                    ArithOp::Div => x / y,
+                    ArithOp::Mod if y == 0.0 => 0.0,
+                    ArithOp::Mod => x % y,
+                })
+            }
+            Cond::Neg(x) => Val::N(-num(x.eval(f))),
+            Cond::Abs(x) => Val::N(num(x.eval(f)).abs()),
+            Cond::Min(a, b) => Val::N(num(a.eval(f)).min(num(b.eval(f)))),
+            Cond::Max(a, b) => Val::N(num(a.eval(f)).max(num(b.eval(f)))),
+            Cond::Prev(x) => x.eval(f.before()),
+            Cond::Rise(x) => Val::B(x.truth(f) && !x.truth(f.before())),
+            Cond::Fall(x) => Val::B(!x.truth(f) && x.truth(f.before())),
+            Cond::Change(x) => Val::B(!same(x.eval(f), x.eval(f.before()))),
+            Cond::Count(i) => Val::N(f.counts.get(*i).copied().unwrap_or(0.0)),
         }
     }
 
-    pub fn truth(&self, vals: &[Val]) -> bool {
-        match self.eval(vals) {
+    pub fn truth(&self, f: Frame) -> bool {
+        match self.eval(f) {
             Val::B(b) => b,
             Val::N(x) => x != 0.0,
+        }
+    }
+
+    /// Whether `rise`, `fall` or `change` occurs in it.
+    pub fn has_event(&self) -> bool {
+        match self {
+            Cond::Rise(_) | Cond::Fall(_) | Cond::Change(_) => true,
+            Cond::Not(x) | Cond::Neg(x) | Cond::Abs(x) | Cond::Prev(x) => x.has_event(),
+            Cond::Logic(_, a, b)
+            | Cond::Cmp(_, a, b)
+            | Cond::Arith(_, a, b)
+            | Cond::Min(a, b)
+            | Cond::Max(a, b) => a.has_event() || b.has_event(),
+            Cond::Ref(_) | Cond::Bool(_) | Cond::Num(_) | Cond::Count(_) => false,
+        }
+    }
+
+    /// The references it reads, each once, in order of first use.
+    pub fn refs(&self, out: &mut Vec<usize>) {
+        match self {
+            Cond::Ref(i) => {
+                if !out.contains(i) {
+                    out.push(*i);
+                }
+            }
+            Cond::Not(x)
+            | Cond::Neg(x)
+            | Cond::Abs(x)
+            | Cond::Prev(x)
+            | Cond::Rise(x)
+            | Cond::Fall(x)
+            | Cond::Change(x) => x.refs(out),
+            Cond::Logic(_, a, b)
+            | Cond::Cmp(_, a, b)
+            | Cond::Arith(_, a, b)
+            | Cond::Min(a, b)
+            | Cond::Max(a, b) => {
+                a.refs(out);
+                b.refs(out);
+            }
+            Cond::Bool(_) | Cond::Num(_) | Cond::Count(_) => {}
         }
     }
 }

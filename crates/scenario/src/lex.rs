@@ -1,9 +1,12 @@
 //! Tokens of one scenario line.
 //!
 //! A word is a run of anything but white space, `(`, `)`, `=`, `<`, `>`,
-//! `"` and `#`-comments; a `[` inside a word extends it to the matching `]`
-//! (so `arr[1, 2].x` is one word), and `#` right after a letter is part of
-//! the word (`T#1s`, `CraneStep#Rest1`). A `#` elsewhere starts a comment.
+//! `"`, the operators `+ - * /`, `,` and `#`-comments; a `[` inside a word
+//! extends it to the matching `]` (so `arr[1, 2].x` is one word), and `#`
+//! right after a letter is part of the word (`T#1s`, `CraneStep#Rest1`). A
+//! `#` elsewhere starts a comment. A `+` or `-` stays in a word after `#`
+//! (`T#-1s`) and after the `e` of a number's exponent (`1e-3`); a `-`
+//! before a number is the parser's unary minus.
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Tok {
@@ -57,6 +60,21 @@ pub fn tokens(line: &str) -> Result<Vec<Token>, (usize, String)> {
                 i += close + 2;
                 continue;
             }
+            b'+' | b'-' | b'*' | b'/' | b',' => {
+                i += 1;
+                out.push(Token {
+                    tok: Tok::Op(match c {
+                        b'+' => "+",
+                        b'-' => "-",
+                        b'*' => "*",
+                        b'/' => "/",
+                        _ => ",",
+                    }),
+                    start,
+                    end: i,
+                });
+                continue;
+            }
             b'=' | b'<' | b'>' => {
                 let two = line.get(i..i + 2).unwrap_or("");
                 let op = match two {
@@ -85,7 +103,9 @@ pub fn tokens(line: &str) -> Result<Vec<Token>, (usize, String)> {
                 b'[' => depth += 1,
                 b']' => depth = depth.saturating_sub(1),
                 _ if depth > 0 => {}
-                b' ' | b'\t' | b'\r' | b'(' | b')' | b'=' | b'<' | b'>' | b'"' => break,
+                b' ' | b'\t' | b'\r' | b'(' | b')' | b'=' | b'<' | b'>' | b'"' | b'*' | b'/'
+                | b',' => break,
+                b'+' | b'-' if !sign_in_word(b, start, i) => break,
                 b'#' if i == start => break,
                 _ => {}
             }
@@ -101,6 +121,17 @@ pub fn tokens(line: &str) -> Result<Vec<Token>, (usize, String)> {
         });
     }
     Ok(out)
+}
+
+/// Whether the `+`/`-` at `i` belongs to the word that started at `start`:
+/// right after `#` (`T#-1s`), or the sign of an exponent (`1.5e-3`).
+fn sign_in_word(b: &[u8], start: usize, i: usize) -> bool {
+    let prev = i.checked_sub(1).and_then(|p| b.get(p)).copied();
+    match prev {
+        Some(b'#') => true,
+        Some(b'e' | b'E') => b.get(start).is_some_and(u8::is_ascii_digit),
+        _ => false,
+    }
 }
 
 #[cfg(test)]
@@ -141,6 +172,32 @@ mod tests {
                 Tok::Op("<>"),
                 Tok::Word("T#1s".into()),
                 Tok::RParen
+            ]
+        );
+        assert_eq!(
+            words("plant.T-Reg.T_sp < -1.5e-3*2"),
+            [
+                Tok::Word("plant.T".into()),
+                Tok::Op("-"),
+                Tok::Word("Reg.T_sp".into()),
+                Tok::Op("<"),
+                Tok::Op("-"),
+                Tok::Word("1.5e-3".into()),
+                Tok::Op("*"),
+                Tok::Word("2".into()),
+            ]
+        );
+        assert_eq!(
+            words("min(a[1, 2],T#-1s)/x"),
+            [
+                Tok::Word("min".into()),
+                Tok::LParen,
+                Tok::Word("a[1, 2]".into()),
+                Tok::Op(","),
+                Tok::Word("T#-1s".into()),
+                Tok::RParen,
+                Tok::Op("/"),
+                Tok::Word("x".into()),
             ]
         );
         assert!(tokens("a[1").is_err());

@@ -8,5 +8,6 @@ mod lex;
 pub mod parse;
 pub mod run;
 
+pub use check::NoPlant;
 pub use parse::parse;
-pub use run::{run, run_on, Failure, Outcome};
+pub use run::{describe, prepare, run, run_on, Failure, Judge, Outcome, Prepared};

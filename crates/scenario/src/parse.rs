@@ -114,18 +114,35 @@ impl<'a> Line<'a> {
         let (w, _) = self.word("a time such as `200ms`, `1.5s` or `T#1m30s`")?;
         parse_duration(&w).map_err(|e| Diagnostic::error(Code::E320, span, e))
     }
+    /// A `-` sign before a number: its span.
+    fn minus(&mut self) -> Option<Span> {
+        let span = self.here();
+        self.eat_op("-").then_some(span)
+    }
     fn number(&mut self) -> Res<f64> {
+        let neg = self.minus();
         let span = self.here();
         let (w, _) = self.word("a number")?;
+        let span = neg.map_or(span, |m| m.to(span));
         w.parse::<f64>()
             .ok()
             .filter(|x| x.is_finite())
+            .filter(|_| neg.is_none() || !w.starts_with(['-', '+']))
+            .map(|x| if neg.is_some() { -x } else { x })
             .ok_or_else(|| Diagnostic::error(Code::E320, span, format!("`{w}` is not a number")))
     }
     fn value(&mut self) -> Res<(Lit, Span)> {
+        let neg = self.minus();
         let (w, span) = self.word("a value (TRUE, FALSE, a number, a TIME or Type#Value)")?;
-        literal(&w)
-            .map(|l| (l, span))
+        let span = neg.map_or(span, |m| m.to(span));
+        let lit = match (literal(&w), neg) {
+            (l, None) => l,
+            (Some(Lit::Int(i)), Some(_)) if i != i64::MIN => Some(Lit::Int(-i)),
+            (Some(Lit::Real(r)), Some(_)) => Some(Lit::Real(-r)),
+            (Some(Lit::Time(t)), Some(_)) if t != i64::MIN => Some(Lit::Time(-t)),
+            _ => None,
+        };
+        lit.map(|l| (l, span))
             .ok_or_else(|| Diagnostic::error(Code::E320, span, format!("`{w}` is not a value")))
     }
 
@@ -149,7 +166,7 @@ impl<'a> Line<'a> {
         Ok(left)
     }
     fn comparison(&mut self) -> Res<Expr> {
-        let left = self.unary()?;
+        let left = self.additive()?;
         let op = match self.peek() {
             Some(Token {
                 tok: Tok::Op(o), ..
@@ -159,25 +176,71 @@ impl<'a> Line<'a> {
                 "<" => CmpOp::Lt,
                 "<=" => CmpOp::Le,
                 ">" => CmpOp::Gt,
-                _ => CmpOp::Ge,
+                ">=" => CmpOp::Ge,
+                _ => return Ok(left),
             },
             _ => return Ok(left),
         };
         self.pos += 1;
-        let right = self.unary()?;
+        let right = self.additive()?;
         Ok(Expr::Cmp(op, Box::new(left), Box::new(right)))
     }
-    /// `f` one level deeper (a NOT or a parenthesis), within [`MAX_NESTING`].
+    fn additive(&mut self) -> Res<Expr> {
+        let mut left = self.multiplicative()?;
+        loop {
+            let op = if self.eat_op("+") {
+                ArithOp::Add
+            } else if self.eat_op("-") {
+                ArithOp::Sub
+            } else {
+                return Ok(left);
+            };
+            let right = self.multiplicative()?;
+            left = Expr::Arith(op, Box::new(left), Box::new(right));
+        }
+    }
+    fn multiplicative(&mut self) -> Res<Expr> {
+        let mut left = self.unary()?;
+        loop {
+            let op = if self.eat_op("*") {
+                ArithOp::Mul
+            } else if self.eat_op("/") {
+                ArithOp::Div
+            } else if self.eat_kw("MOD") {
+                ArithOp::Mod
+            } else {
+                return Ok(left);
+            };
+            let right = self.unary()?;
+            left = Expr::Arith(op, Box::new(left), Box::new(right));
+        }
+    }
+    /// `f` one level deeper (a NOT, a minus, a parenthesis or a function
+    /// call), within [`MAX_NESTING`].
     fn nested(&mut self, f: impl FnOnce(&mut Self) -> Res<Expr>) -> Res<Expr> {
         if self.depth >= MAX_NESTING {
             return Err(self.err(format!(
-                "NOT and parentheses nest too deeply (at most {MAX_NESTING} levels)"
+                "NOT, minus signs, parentheses and function calls nest too deeply (at most {MAX_NESTING} levels)"
             )));
         }
         self.depth += 1;
         let r = f(self);
         self.depth -= 1;
         r
+    }
+    fn close(&mut self) -> Res<usize> {
+        match self.peek() {
+            Some(Token {
+                tok: Tok::RParen,
+                end,
+                ..
+            }) => {
+                let end = *end;
+                self.pos += 1;
+                Ok(end)
+            }
+            _ => Err(self.err("expected `)`")),
+        }
     }
     fn unary(&mut self) -> Res<Expr> {
         // Every operand of a condition is read here: counting the calls
@@ -186,11 +249,31 @@ impl<'a> Line<'a> {
         self.terms += 1;
         if self.terms > MAX_TERMS {
             return Err(self.err(format!(
-                "the condition is too long (more than {MAX_TERMS} names, values, NOTs and parentheses)"
+                "the condition is too long (more than {MAX_TERMS} names, values, operators and parentheses)"
             )));
         }
         if self.eat_kw("NOT") {
             return self.nested(|l| Ok(Expr::Not(Box::new(l.unary()?))));
+        }
+        if let Some(Token {
+            tok: Tok::Op("-"),
+            start,
+            end,
+        }) = self.peek().cloned()
+        {
+            self.pos += 1;
+            let span = self.span(start, end);
+            return self.nested(|l| {
+                Ok(match l.unary()? {
+                    // `-5` is the literal -5 (so `set`-like uses and
+                    // messages show it as written).
+                    Expr::Lit(Lit::Int(i), s) if i != i64::MIN => {
+                        Expr::Lit(Lit::Int(-i), span.to(s))
+                    }
+                    Expr::Lit(Lit::Real(r), s) => Expr::Lit(Lit::Real(-r), span.to(s)),
+                    x => Expr::Neg(Box::new(x), span),
+                })
+            });
         }
         match self.peek().cloned() {
             Some(Token {
@@ -198,15 +281,8 @@ impl<'a> Line<'a> {
             }) => {
                 self.pos += 1;
                 let e = self.nested(Self::expr)?;
-                match self.peek() {
-                    Some(Token {
-                        tok: Tok::RParen, ..
-                    }) => {
-                        self.pos += 1;
-                        Ok(e)
-                    }
-                    _ => Err(self.err("expected `)`")),
-                }
+                self.close()?;
+                Ok(e)
             }
             Some(Token {
                 tok: Tok::Word(w),
@@ -215,20 +291,65 @@ impl<'a> Line<'a> {
             }) if !is_stop_word(&w) => {
                 self.pos += 1;
                 let span = self.span(start, end);
+                let call = Func::by_name(&w).filter(|_| {
+                    matches!(
+                        self.peek(),
+                        Some(Token {
+                            tok: Tok::LParen,
+                            ..
+                        })
+                    )
+                });
+                if let Some(f) = call {
+                    self.pos += 1;
+                    return self.nested(|l| {
+                        let mut args = vec![l.expr()?];
+                        while args.len() < f.arity() {
+                            if !l.eat_op(",") {
+                                return Err(l.err(format!(
+                                    "expected `,`: {}(...) takes {} arguments",
+                                    f.name(),
+                                    f.arity()
+                                )));
+                            }
+                            args.push(l.expr()?);
+                        }
+                        let end = l.close()?;
+                        Ok(Expr::Call(f, args, span.to(l.span(end, end))))
+                    });
+                }
                 Ok(match literal(&w) {
                     Some(l) => Expr::Lit(l, span),
                     None => Expr::Ref(Name { text: w, span }),
                 })
             }
-            _ => Err(self.err("expected a condition (a name, a value, NOT or `(`)")),
+            _ => Err(self.err(
+                "expected a condition or value (a name, a value, NOT, `-`, `(` or a function such as rise(x))",
+            )),
         }
+    }
+
+    /// `after TIME` or `after EVENT`.
+    fn anchor(&mut self) -> Res<Anchor> {
+        if let Some(Token {
+            tok: Tok::Word(w), ..
+        }) = self.peek()
+        {
+            if let Ok(t) = parse_duration(w) {
+                self.pos += 1;
+                return Ok(Anchor::Time(t));
+            }
+        }
+        Ok(Anchor::Event(self.expr()?))
     }
 }
 
 fn is_stop_word(w: &str) -> bool {
-    ["within", "during", "after", "AND", "OR", "XOR"]
-        .iter()
-        .any(|k| w.eq_ignore_ascii_case(k))
+    [
+        "within", "during", "after", "stable", "for", "then", "AND", "OR", "XOR", "MOD",
+    ]
+    .iter()
+    .any(|k| w.eq_ignore_ascii_case(k))
 }
 
 /// A literal, or `None` when the word is a name.
@@ -271,6 +392,7 @@ pub fn parse(text: &str, file: FileId, default_name: &str) -> Result<Scenario, V
         duration_ns: 0,
         seed: None,
         actions: Vec::new(),
+        reactions: Vec::new(),
         expects: Vec::new(),
     };
     let mut duration = false;
@@ -330,7 +452,7 @@ pub fn parse(text: &str, file: FileId, default_name: &str) -> Result<Scenario, V
 
 /// One line; `Some(())` when it was the `duration` line.
 fn statement(l: &mut Line, scn: &mut Scenario) -> Res<Option<()>> {
-    let (head, _) = l.word("`name`, `duration`, `seed`, `at` or `expect`")?;
+    let (head, _) = l.word("`name`, `duration`, `seed`, `at`, `when` or `expect`")?;
     match head.to_ascii_lowercase().as_str() {
         "name" => {
             scn.name = match l.peek() {
@@ -376,6 +498,18 @@ fn statement(l: &mut Line, scn: &mut Scenario) -> Res<Option<()>> {
                 line: l.number,
             });
         }
+        "when" => {
+            let event = l.expr()?;
+            let delay_ns = if l.eat_kw("after") { l.time()? } else { 0 };
+            l.expect_kw("then")?;
+            let kind = action(l)?;
+            scn.reactions.push(Reaction {
+                event,
+                delay_ns,
+                kind,
+                line: l.number,
+            });
+        }
         "expect" => {
             let start = l.peek().map_or(l.text.len(), |t| t.start);
             let e = expect(l)?;
@@ -390,7 +524,7 @@ fn statement(l: &mut Line, scn: &mut Scenario) -> Res<Option<()>> {
         other => {
             l.pos = 0;
             return Err(l.err(format!(
-                "unknown statement `{other}` (want `name`, `duration`, `seed`, `at` or `expect`)"
+                "unknown statement `{other}` (want `name`, `duration`, `seed`, `at`, `when` or `expect`)"
             )));
         }
     }
@@ -444,10 +578,8 @@ fn action(l: &mut Line) -> Res<ActionKind> {
     })
 }
 
-fn during(l: &mut Line) -> Res<(i64, Option<i64>)> {
-    if !l.eat_kw("during") {
-        return Ok((0, None));
-    }
+/// A range `A..B` (one word).
+fn range(l: &mut Line) -> Res<(i64, i64)> {
     let span = l.here();
     let (w, _) = l.word("a range `A..B`")?;
     let bad = |m: String| Diagnostic::error(Code::E320, span, m);
@@ -459,6 +591,14 @@ fn during(l: &mut Line) -> Res<(i64, Option<i64>)> {
     if b < a {
         return Err(bad(format!("the range `{w}` ends before it starts")));
     }
+    Ok((a, b))
+}
+
+fn during(l: &mut Line) -> Res<(i64, Option<i64>)> {
+    if !l.eat_kw("during") {
+        return Ok((0, None));
+    }
+    let (a, b) = range(l)?;
     Ok((a, Some(b)))
 }
 
@@ -484,11 +624,43 @@ fn expect(l: &mut Line) -> Res<Expect> {
         return Ok(blank(When::Always { from, to }, c));
     }
     let c = l.expr()?;
-    l.expect_kw("within")?;
-    let within = l.time()?;
-    l.expect_kw("after")?;
-    let after = l.time()?;
-    Ok(blank(When::Within { after, within }, c))
+    if l.eat_kw("within") {
+        let within = l.time()?;
+        l.expect_kw("after")?;
+        let after = l.anchor()?;
+        return Ok(blank(When::Within { after, within }, c));
+    }
+    if l.eat_kw("stable") {
+        if l.eat_kw("during") {
+            let (a, b) = range(l)?;
+            let when = When::Stable {
+                after: Anchor::Time(a),
+                for_ns: b - a,
+            };
+            return Ok(blank(when, c));
+        }
+        l.expect_kw("for")?;
+        let for_ns = l.time()?;
+        l.expect_kw("after")?;
+        let after = l.anchor()?;
+        return Ok(blank(When::Stable { after, for_ns }, c));
+    }
+    if kw(l.peek(), "during") {
+        let here = l.here();
+        l.pos += 1;
+        let (from, to) = range(l)?;
+        if !c.has_count() {
+            return Err(Diagnostic::error(
+                Code::E320,
+                here,
+                "`expect C during A..B` judges C once at B, for conditions with count(...); write `expect always C during A..B` for C at every scan",
+            ));
+        }
+        return Ok(blank(When::During { from, to }, c));
+    }
+    Err(l.err(
+        "expected `within`, `stable` or `during` (or write `expect at T C`, `expect always C`)",
+    ))
 }
 
 #[cfg(test)]

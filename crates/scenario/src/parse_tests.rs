@@ -50,7 +50,7 @@ expect at 40s Ctrl.step = CraneStep#Rest1 AND plant.x < 0.05
     assert_eq!(
         s.expects[1].when,
         When::Within {
-            after: 1_000_000_000,
+            after: Anchor::Time(1_000_000_000),
             within: 30_000_000_000
         }
     );
@@ -103,7 +103,7 @@ fn errors_point_at_the_token() {
     );
     assert_eq!(
         err("duration 1s\nfoo\n").2,
-        "unknown statement `foo` (want `name`, `duration`, `seed`, `at` or `expect`)"
+        "unknown statement `foo` (want `name`, `duration`, `seed`, `at`, `when` or `expect`)"
     );
     assert_eq!(err("duration 1s\nexpect at 1s (a\n").2, "expected `)`");
     assert_eq!(
@@ -146,4 +146,129 @@ fn deep_or_long_conditions_are_errors_not_stack_overflows() {
     );
     assert_eq!(ok(&chain).expects.len(), 1);
     assert!(parse_action(&format!("press {}", "(".repeat(100_000)), FileId(0)).is_err());
+}
+
+/// The language of issue 17 point 3: arithmetic, functions, event anchors,
+/// `stable`, `during` with `count`, reactions.
+#[test]
+fn arithmetic_events_counts_and_reactions() {
+    let s = ok("duration 60s
+expect always plant.T - Reg.T_sp < 1.0 * 2 + -0.5
+expect NOT M2S within 20ms after rise(l2)
+expect count(rise(valva_1)) <= 10 during 0s..60s
+expect M1 stable for 500ms after rise(Start)
+expect x stable during 1s..2s
+expect always abs(a - b) < max(c, 2) MOD 3
+expect at 1s prev(x) = -3 AND change(y)
+when rise(Alarm) then press Pc for 200ms
+when fall(l1) after 1.5s then set n = -2
+");
+    // Precedence: `*` before `+`/`-` before `<`.
+    let Expr::Cmp(CmpOp::Lt, l, r) = &s.expects[0].cond else {
+        panic!("{:?}", s.expects[0].cond)
+    };
+    assert!(matches!(&**l, Expr::Arith(ArithOp::Sub, a, b)
+        if matches!(&**a, Expr::Ref(n) if n.text == "plant.T") && matches!(&**b, Expr::Ref(n) if n.text == "Reg.T_sp")));
+    assert!(matches!(&**r, Expr::Arith(ArithOp::Add, m, n)
+        if matches!(&**m, Expr::Arith(ArithOp::Mul, ..)) && matches!(&**n, Expr::Lit(Lit::Real(x), _) if *x == -0.5)));
+    assert!(matches!(&s.expects[1].when,
+        When::Within { after: Anchor::Event(Expr::Call(Func::Rise, a, _)), within: 20_000_000 }
+            if matches!(&a[..], [Expr::Ref(n)] if n.text == "l2")));
+    assert_eq!(
+        s.expects[2].when,
+        When::During {
+            from: 0,
+            to: 60_000_000_000
+        }
+    );
+    assert!(
+        matches!(&s.expects[2].cond, Expr::Cmp(CmpOp::Le, c, _) if matches!(&**c, Expr::Call(Func::Count, ..)))
+    );
+    assert!(matches!(
+        &s.expects[3].when,
+        When::Stable {
+            after: Anchor::Event(_),
+            for_ns: 500_000_000
+        }
+    ));
+    assert_eq!(
+        s.expects[4].when,
+        When::Stable {
+            after: Anchor::Time(1_000_000_000),
+            for_ns: 1_000_000_000
+        }
+    );
+    assert!(matches!(&s.expects[5].cond, Expr::Cmp(CmpOp::Lt, a, m)
+        if matches!(&**a, Expr::Call(Func::Abs, ..)) && matches!(&**m, Expr::Arith(ArithOp::Mod, ..))));
+    assert_eq!(s.reactions.len(), 2);
+    assert!(
+        matches!(&s.reactions[0].kind, ActionKind::Press(n, Some(200_000_000)) if n.text == "Pc")
+    );
+    assert_eq!(s.reactions[1].delay_ns, 1_500_000_000);
+    assert!(matches!(
+        &s.reactions[1].kind,
+        ActionKind::Set(_, Lit::Int(-2), _)
+    ));
+    assert_eq!(s.reactions[1].line, 10);
+}
+
+#[test]
+fn errors_of_the_new_constructs() {
+    assert_eq!(
+        err("duration 1s\nexpect x during 0s..1s\n").2,
+        "`expect C during A..B` judges C once at B, for conditions with count(...); write `expect always C during A..B` for C at every scan"
+    );
+    assert_eq!(
+        err("duration 1s\nexpect min(a) < 1 within 1s after 0s\n").2,
+        "expected `,`: min(...) takes 2 arguments"
+    );
+    assert_eq!(
+        err("duration 1s\nwhen rise(a) press b\n").2,
+        "expected `then`"
+    );
+    assert_eq!(
+        err("duration 1s\nexpect x stable after 1s\n").2,
+        "expected `for`"
+    );
+    assert_eq!(
+        err("duration 1s\nexpect x\n").2,
+        "expected `within`, `stable` or `during` (or write `expect at T C`, `expect always C`)"
+    );
+    // A name that happens to be a function's name is a name without `(`.
+    let s = ok("duration 1s\nexpect at 1s count > 2\n");
+    assert!(
+        matches!(&s.expects[0].cond, Expr::Cmp(_, c, _) if matches!(&**c, Expr::Ref(n) if n.text == "count"))
+    );
+}
+
+/// Every nesting construct is bounded, and hostile lines are refused at
+/// once (parse, and the action reader of the live console).
+#[test]
+fn every_nesting_construct_is_bounded() {
+    for open in [
+        "(", "NOT ", "- ", "rise(", "abs(", "min(1, ", "prev(", "count(",
+    ] {
+        let line = format!("duration 1s\nexpect at 1s {}x\n", open.repeat(50_000));
+        let t0 = std::time::Instant::now();
+        let (code, _, msg) = err(&line);
+        assert_eq!(code, Code::E320, "{open}");
+        assert!(msg.contains("nest too deeply"), "{open}: {msg}");
+        assert!(
+            t0.elapsed() < std::time::Duration::from_millis(500),
+            "{open}"
+        );
+    }
+    for line in [
+        format!("duration 1s\nat 0s press {}\n", "(".repeat(100_000)),
+        format!("duration 1s\nwhen {}x then press a\n", "(".repeat(100_000)),
+        format!(
+            "duration 1s\nexpect x within 1s after {}x\n",
+            "(".repeat(100_000)
+        ),
+        format!("duration 1s\nexpect always x{}\n", " + x".repeat(100_000)),
+    ] {
+        let t0 = std::time::Instant::now();
+        assert_eq!(err(&line).0, Code::E320);
+        assert!(t0.elapsed() < std::time::Duration::from_millis(500));
+    }
 }

@@ -1,23 +1,41 @@
 //! Running a scenario on the virtual clock and judging its expectations.
 //!
-//! When an expectation is decided (after each scan at PLC time t):
+//! After each scan at PLC time t the values the scenario names are read
+//! (the values after the previous scan are kept for `prev`, `rise`, `fall`
+//! and `change`; before the first scan they are the initial values), then:
 //! - `at T C`: at the first scan with t >= T (T itself when a scan falls
-//!   on it), C must hold; not reached before the end of the run fails.
+//!   on it), C must hold; not reached before the end of the run fails
+//!   (T at or before the run's duration is judged on the final state).
 //! - `C within W after A`: passes at the first scan in (A, A+W] where C
 //!   holds; fails at the first scan with t >= A+W where it did not (or at
-//!   the end of the run).
+//!   the end of the run). After an event E, every occurrence at a scan t_e
+//!   opens the window [t_e, t_e+W] (the scan of the event counts: the
+//!   program has already seen it); a window still open when the run ends
+//!   fails only when it ended within the run, and an event that never
+//!   happened fails the expectation.
 //! - `always C [during A..B]`: fails at the first scan in [A, B] (the whole
 //!   run without `during`) where C does not hold.
+//! - `C during A..B`: judged once, at the first scan with t >= B (or on the
+//!   final state when B is at or before the run's duration).
+//! - `X stable for D after A`: the value of X at the first scan at or after
+//!   A (or at each occurrence of an event) must not change at any scan up
+//!   to A+D.
+//! - `count(C)` is the number of scans of the expectation's window where C
+//!   held: [0, T] for `at T`, [A, B] for `during A..B` (the whole run for
+//!   `always` without `during`).
+//! - `when E [after D] then ACTION`: at every scan where the event E occurs,
+//!   the action is scheduled D later (the next scan applies it).
 //!
-//! A runtime fault of the program fails the scenario.
+//! An expectation fails at most once: at its first violation. A runtime
+//! fault of the program fails the scenario.
 
-use crate::ast::{Scenario, When};
-use crate::check::{show_f64, show_value, Cond, Ref, Scope, Src, Val};
-use automat_base::{Code, Diagnostic, Span};
+use crate::ast::{self, Anchor, Scenario, When};
+use crate::check::{same, show_f64, show_value, Cond, Ctx, Frame, NoPlant, Ref, Scope, Src, Val};
+use automat_base::Diagnostic;
 use automat_engine::Engine;
 use automat_iec::format::format_duration;
 use automat_ir::Program;
-use automat_project::{bind, PlantExec, Project, Sim};
+use automat_project::{bind, Action, PlantExec, Project, Sim};
 use automat_runtime::io::NoIo;
 use automat_runtime::scan::Env;
 use automat_runtime::trace::csv_cell;
@@ -26,6 +44,7 @@ use automat_runtime::{
     SystemClock,
 };
 use std::cell::RefCell;
+use std::collections::VecDeque;
 use std::io::Write;
 use std::rc::Rc;
 use std::sync::atomic::AtomicBool;
@@ -51,25 +70,615 @@ pub struct Outcome {
     pub end_ns: i64,
 }
 
+/// The failures as `automat test` and `automat run --scenario` print them:
+/// `FILE:LINE: expect ...`, `  failed at T: reason`, `  values: ...`.
+pub fn describe(shown: &str, failures: &[Failure]) -> String {
+    let mut details = String::new();
+    for f in failures {
+        let at = format_duration(f.at_ns, false);
+        if f.line > 0 {
+            details.push_str(&format!("{shown}:{}: {}\n", f.line, f.what));
+        } else {
+            details.push_str(&format!("{shown}: {}\n", f.what));
+        }
+        details.push_str(&format!("  failed at {at}: {}\n", f.reason));
+        if !f.values.is_empty() {
+            details.push_str(&format!("  values: {}\n", f.values));
+        }
+    }
+    details
+}
+
+/// A window's start, resolved.
+enum Start {
+    Time(i64),
+    Event(Cond),
+}
+
+/// When an expectation is judged, resolved.
+enum Win {
+    At(i64),
+    Within { after: Start, within: i64 },
+    Always { from: i64, to: Option<i64> },
+    During { from: i64, to: i64 },
+    Stable { after: Start, for_ns: i64 },
+}
+
 struct Check {
-    when: When,
+    win: Win,
     cond: Cond,
+    /// The arguments of its `count(...)`s, their counters and their text.
+    counts: Vec<Cond>,
+    counters: Vec<f64>,
+    count_texts: Vec<String>,
     text: String,
     line: u32,
     /// Indexes into the refs this condition names, for the failure values.
     names: Vec<usize>,
     done: bool,
+    /// Event windows still open (their start times), oldest first.
+    open: VecDeque<i64>,
+    /// The anchor happened (an event) or was reached (a time).
+    seen: bool,
+    /// `stable`: the value the open windows hold to.
+    reference: Val,
 }
 
-fn cond_refs(c: &Cond, out: &mut Vec<usize>) {
-    match c {
-        Cond::Ref(i) if !out.contains(i) => out.push(*i),
-        Cond::Not(x) => cond_refs(x, out),
-        Cond::Logic(_, a, b) | Cond::Cmp(_, a, b) => {
-            cond_refs(a, out);
-            cond_refs(b, out);
+/// A resolved `when` line.
+struct React {
+    event: Cond,
+    delay_ns: i64,
+    actions: Vec<(i64, Action)>,
+}
+
+fn t(ns: i64) -> String {
+    format_duration(ns, false)
+}
+
+fn show_val(v: Val) -> String {
+    match v {
+        Val::B(true) => "TRUE".into(),
+        Val::B(false) => "FALSE".into(),
+        Val::N(x) => show_f64(x),
+    }
+}
+
+/// A scenario resolved against a program and its plant: the timed actions
+/// to schedule on the [`Sim`] and the [`Judge`] of its expectations and
+/// reactions.
+pub struct Prepared {
+    pub actions: Vec<(i64, Action)>,
+    pub judge: Judge,
+}
+
+fn start_of(scope: &Scope, a: &Anchor, refs: &mut Vec<Ref>) -> Result<Start, Diagnostic> {
+    Ok(match a {
+        Anchor::Time(t) => Start::Time(*t),
+        Anchor::Event(e) => Start::Event(scope.event(e, refs)?),
+    })
+}
+
+/// Resolves every name, type and action of `scn` (all the errors at once).
+pub fn prepare(scope: &Scope, scn: &Scenario) -> Result<Prepared, Vec<Diagnostic>> {
+    let mut errors = Vec::new();
+    let mut refs = Vec::new();
+    let mut checks = Vec::new();
+    for e in &scn.expects {
+        match check_of(scope, e, &mut refs) {
+            Ok(c) => checks.push(c),
+            Err(d) => errors.push(d),
         }
-        _ => {}
+    }
+    let mut actions = Vec::new();
+    for a in &scn.actions {
+        match scope.action(a) {
+            Ok(list) => actions.extend(list),
+            Err(d) => errors.push(d),
+        }
+    }
+    let mut reactions = Vec::new();
+    for r in &scn.reactions {
+        let action = ast::Action {
+            at_ns: 0,
+            kind: r.kind.clone(),
+            line: r.line,
+        };
+        match (scope.event(&r.event, &mut refs), scope.action(&action)) {
+            (Ok(event), Ok(actions)) => reactions.push(React {
+                event,
+                delay_ns: r.delay_ns,
+                actions,
+            }),
+            (Err(d), _) | (_, Err(d)) => errors.push(d),
+        }
+    }
+    if !errors.is_empty() {
+        // In the file's order (expectations were checked first).
+        errors.sort_by_key(|d| d.span.start);
+        return Err(errors);
+    }
+    let n = refs.len();
+    Ok(Prepared {
+        actions,
+        judge: Judge {
+            refs,
+            vals: Vec::with_capacity(n),
+            prev: Vec::with_capacity(n),
+            started: false,
+            checks,
+            reactions,
+            failures: Vec::new(),
+            last_ns: 0,
+            duration_ns: scn.duration_ns,
+        },
+    })
+}
+
+/// Resolves one expectation.
+pub fn check_expect(scope: &Scope, e: &ast::Expect, refs: &mut Vec<Ref>) -> Result<(), Diagnostic> {
+    check_of(scope, e, refs).map(|_| ())
+}
+
+fn check_of(scope: &Scope, e: &ast::Expect, refs: &mut Vec<Ref>) -> Result<Check, Diagnostic> {
+    // Windows over which count(...) counts: `at`, `always`, `during`.
+    let mut ctx = match e.when {
+        When::At(_) | When::Always { .. } | When::During { .. } => Ctx::counting(),
+        When::Within { .. } | When::Stable { .. } => Ctx::default(),
+    };
+    let cond = match e.when {
+        When::Stable { .. } => scope.value_in(&e.cond, refs, &mut ctx)?,
+        _ => scope.condition_in(&e.cond, refs, &mut ctx)?,
+    };
+    let win = match &e.when {
+        When::At(t) => Win::At(*t),
+        When::Within { after, within } => Win::Within {
+            after: start_of(scope, after, refs)?,
+            within: *within,
+        },
+        When::Always { from, to } => Win::Always {
+            from: *from,
+            to: *to,
+        },
+        When::During { from, to } => Win::During {
+            from: *from,
+            to: *to,
+        },
+        When::Stable { after, for_ns } => Win::Stable {
+            after: start_of(scope, after, refs)?,
+            for_ns: *for_ns,
+        },
+    };
+    let mut names = Vec::new();
+    cond.refs(&mut names);
+    let counts = ctx.counts.unwrap_or_default();
+    for c in &counts {
+        c.refs(&mut names);
+    }
+    // The counts as written, for the failure's values (the checker numbers
+    // them left to right, as this walk meets them).
+    let mut spans = Vec::new();
+    count_spans(&e.cond, &mut spans);
+    let count_texts = spans
+        .iter()
+        .map(|s| {
+            let from = s.start.saturating_sub(e.span.start) as usize;
+            let to = s.end.saturating_sub(e.span.start) as usize;
+            e.text.get(from..to).unwrap_or("count").to_string()
+        })
+        .collect();
+    Ok(Check {
+        win,
+        counters: vec![0.0; counts.len()],
+        count_texts,
+        counts,
+        cond,
+        text: e.text.clone(),
+        line: e.line,
+        names,
+        done: false,
+        open: VecDeque::new(),
+        seen: false,
+        reference: Val::B(false),
+    })
+}
+
+/// The spans of the `count(...)` calls in `e`, left to right.
+fn count_spans(e: &ast::Expr, out: &mut Vec<automat_base::Span>) {
+    use ast::{Expr, Func};
+    match e {
+        Expr::Call(Func::Count, _, span) => out.push(*span),
+        Expr::Call(_, args, _) => args.iter().for_each(|a| count_spans(a, out)),
+        Expr::Not(x) | Expr::Neg(x, _) => count_spans(x, out),
+        Expr::Logic(_, a, b) | Expr::Cmp(_, a, b) | Expr::Arith(_, a, b) => {
+            count_spans(a, out);
+            count_spans(b, out);
+        }
+        Expr::Ref(_) | Expr::Lit(..) => {}
+    }
+}
+
+/// Judges the expectations and fires the reactions of one scenario, scan
+/// by scan (see the module comment).
+pub struct Judge {
+    refs: Vec<Ref>,
+    vals: Vec<Val>,
+    prev: Vec<Val>,
+    started: bool,
+    checks: Vec<Check>,
+    reactions: Vec<React>,
+    failures: Vec<Failure>,
+    last_ns: i64,
+    duration_ns: i64,
+}
+
+/// What one check comes to at a scan: nothing yet, passed, or failed.
+enum Verdict {
+    Open,
+    Pass,
+    Fail(String),
+}
+
+impl Judge {
+    /// The names the scenario reads.
+    pub fn refs(&self) -> &[Ref] {
+        &self.refs
+    }
+
+    /// The values before the first scan (for `prev`, `rise`, ...).
+    pub fn start(&mut self, image: &[u8], sim: &Sim) {
+        self.prev.clear();
+        self.prev
+            .extend(self.refs.iter().map(|r| r.read(image, sim)));
+        self.started = true;
+    }
+
+    fn values(&self, names: &[usize], image: &[u8], sim: &Sim) -> String {
+        names
+            .iter()
+            .filter_map(|&i| self.refs.get(i))
+            .map(|r| format!("{} = {}", r.name, r.show(image, sim)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    fn fail(&mut self, k: usize, at: i64, reason: String, image: &[u8], sim: &Sim) {
+        let Some(c) = self.checks.get(k) else { return };
+        let mut values = self.values(&c.names, image, sim);
+        for (text, n) in c.count_texts.iter().zip(&c.counters) {
+            if !values.is_empty() {
+                values.push_str(", ");
+            }
+            values.push_str(&format!("{text} = {n}"));
+        }
+        let f = Failure {
+            what: format!("expect {}", c.text),
+            line: c.line,
+            at_ns: at,
+            reason,
+            values,
+        };
+        self.failures.push(f);
+    }
+
+    /// After the scan at `now`: reads the values, judges, fires reactions.
+    pub fn after_scan(&mut self, now: i64, image: &[u8], sim: &RefCell<Sim>) {
+        self.last_ns = now;
+        {
+            let s = sim.borrow();
+            self.vals.clear();
+            self.vals
+                .extend(self.refs.iter().map(|r| r.read(image, &s)));
+        }
+        if !self.started {
+            self.prev.clone_from(&self.vals);
+            self.started = true;
+        }
+        for k in 0..self.checks.len() {
+            let verdict = match self.checks.get_mut(k) {
+                Some(c) if !c.done => judge(c, now, &self.vals, &self.prev),
+                _ => continue,
+            };
+            match verdict {
+                Verdict::Open => {}
+                Verdict::Pass => {
+                    if let Some(c) = self.checks.get_mut(k) {
+                        c.done = true;
+                    }
+                }
+                Verdict::Fail(reason) => {
+                    if let Some(c) = self.checks.get_mut(k) {
+                        c.done = true;
+                    }
+                    self.fail(k, now, reason, image, &sim.borrow());
+                }
+            }
+        }
+        let frame = Frame {
+            now: &self.vals,
+            prev: &self.prev,
+            counts: &[],
+        };
+        for r in &self.reactions {
+            if r.event.truth(frame) {
+                let mut s = sim.borrow_mut();
+                let at = now.saturating_add(r.delay_ns);
+                for (off, a) in &r.actions {
+                    s.schedule(at.saturating_add(*off), a.clone());
+                }
+            }
+        }
+        std::mem::swap(&mut self.vals, &mut self.prev);
+    }
+
+    /// How many expectations are still open (not yet passed or failed).
+    pub fn open(&self) -> usize {
+        self.checks.iter().filter(|c| !c.done).count()
+    }
+
+    /// The failures so far (a run that stopped early: what was still open
+    /// is not judged), in time order.
+    pub fn failures(self) -> Vec<Failure> {
+        let mut f = self.failures;
+        f.sort_by_key(|f| f.at_ns);
+        f
+    }
+
+    /// Judges what is still open when the run ends (its last scan was at
+    /// `last_ns`) and returns every failure, in time order.
+    pub fn finish(mut self, image: &[u8], sim: &Sim) -> Vec<Failure> {
+        let end = self.last_ns;
+        let duration = self.duration_ns;
+        // The values after the last scan (`after_scan` moved them).
+        let vals = std::mem::take(&mut self.prev);
+        for k in 0..self.checks.len() {
+            let Some(c) = self.checks.get_mut(k) else {
+                continue;
+            };
+            if c.done {
+                continue;
+            }
+            c.done = true;
+            let frame = Frame {
+                now: &vals,
+                prev: &vals,
+                counts: &c.counters,
+            };
+            let reason = match &c.win {
+                // The state at the end of the run is the state at its
+                // duration: `expect at 60s` of a 60 s run is judged on it.
+                Win::At(at) if *at <= duration => {
+                    if c.cond.truth(frame) {
+                        continue;
+                    }
+                    "it is FALSE at the end of the run".to_string()
+                }
+                Win::At(at) => format!("the run ends at {} before {}", t(duration), t(*at)),
+                Win::During { to, .. } if *to <= duration => {
+                    if c.cond.truth(frame) {
+                        continue;
+                    }
+                    "it is FALSE at the end of the run".to_string()
+                }
+                Win::During { to, .. } => format!(
+                    "the run ends at {} before the window ends at {}",
+                    t(duration),
+                    t(*to)
+                ),
+                Win::Within {
+                    after: Start::Time(_),
+                    ..
+                } => format!("it did not become TRUE before the run ended at {}", t(end)),
+                Win::Within { within, .. } => {
+                    if !c.seen {
+                        "its event never happened".to_string()
+                    } else {
+                        match c.open.front() {
+                            Some(&s) if s.saturating_add(*within) <= duration => format!(
+                                "after the event at {} it did not become TRUE before the run ended at {}",
+                                t(s),
+                                t(end)
+                            ),
+                            _ => continue,
+                        }
+                    }
+                }
+                Win::Always { .. } => continue,
+                Win::Stable {
+                    after: Start::Time(a),
+                    for_ns,
+                } => {
+                    if *a > duration {
+                        format!("the run ends at {} before {}", t(duration), t(*a))
+                    } else if a.saturating_add(*for_ns) > duration {
+                        format!(
+                            "the run ends at {} before the window ends at {}",
+                            t(duration),
+                            t(a.saturating_add(*for_ns))
+                        )
+                    } else {
+                        continue;
+                    }
+                }
+                Win::Stable { .. } => {
+                    if c.seen {
+                        continue;
+                    }
+                    "its event never happened".to_string()
+                }
+            };
+            self.fail(k, end, reason, image, sim);
+        }
+        let mut failures = self.failures;
+        failures.sort_by_key(|f| f.at_ns);
+        failures
+    }
+}
+
+/// Counts, then judges, one open check after the scan at `now`.
+fn judge(c: &mut Check, now: i64, vals: &[Val], prev: &[Val]) -> Verdict {
+    let counting = match &c.win {
+        Win::At(at) => now <= *at,
+        Win::Always { from, to } => now >= *from && to.is_none_or(|b| now <= b),
+        Win::During { from, to } => now >= *from && now <= *to,
+        _ => false,
+    };
+    if counting && !c.counts.is_empty() {
+        let f = Frame {
+            now: vals,
+            prev,
+            counts: &[],
+        };
+        for (n, arg) in c.counters.iter_mut().zip(&c.counts) {
+            if arg.truth(f) {
+                *n += 1.0;
+            }
+        }
+    }
+    let f = Frame {
+        now: vals,
+        prev,
+        counts: &c.counters,
+    };
+    match &c.win {
+        Win::At(at) if now >= *at => {
+            if c.cond.truth(f) {
+                Verdict::Pass
+            } else {
+                Verdict::Fail("it is FALSE".into())
+            }
+        }
+        Win::At(_) => Verdict::Open,
+        Win::Within {
+            after: Start::Time(after),
+            within,
+        } => {
+            let end = after.saturating_add(*within);
+            if c.cond.truth(f) && now > *after && now <= end {
+                Verdict::Pass
+            } else if now >= end {
+                Verdict::Fail(format!(
+                    "it did not become TRUE in ({}, {}]",
+                    t(*after),
+                    t(end)
+                ))
+            } else {
+                Verdict::Open
+            }
+        }
+        Win::Within {
+            after: Start::Event(ev),
+            within,
+        } => {
+            let happened = ev.truth(f);
+            c.seen |= happened;
+            let missed = |s: i64| {
+                Verdict::Fail(format!(
+                    "after the event at {} it did not become TRUE in [{}, {}]",
+                    t(s),
+                    t(s),
+                    t(s.saturating_add(*within))
+                ))
+            };
+            // A window that ended between the last scan and this one.
+            if let Some(&s) = c.open.front() {
+                if s.saturating_add(*within) < now {
+                    return missed(s);
+                }
+            }
+            if c.cond.truth(f) {
+                // Every open window (and one opening now) is satisfied.
+                c.open.clear();
+                return Verdict::Open;
+            }
+            if happened {
+                c.open.push_back(now);
+            }
+            match c.open.front() {
+                Some(&s) if now >= s.saturating_add(*within) => missed(s),
+                _ => Verdict::Open,
+            }
+        }
+        Win::Always { from, to } => {
+            let inside = now >= *from && to.is_none_or(|b| now <= b);
+            if inside && !c.cond.truth(f) {
+                Verdict::Fail("it is FALSE".into())
+            } else if to.is_some_and(|b| now >= b) {
+                Verdict::Pass
+            } else {
+                Verdict::Open
+            }
+        }
+        Win::During { to, .. } => {
+            if now < *to {
+                Verdict::Open
+            } else if c.cond.truth(f) {
+                Verdict::Pass
+            } else {
+                Verdict::Fail("it is FALSE at the end of the window".into())
+            }
+        }
+        Win::Stable {
+            after: Start::Time(a),
+            for_ns,
+        } => {
+            let cur = c.cond.eval(f);
+            let end = a.saturating_add(*for_ns);
+            if now < *a {
+                Verdict::Open
+            } else if !c.seen {
+                c.seen = true;
+                c.reference = cur;
+                if now >= end {
+                    Verdict::Pass
+                } else {
+                    Verdict::Open
+                }
+            } else if now > end {
+                // The window ended between the last scan and this one.
+                Verdict::Pass
+            } else if !same(cur, c.reference) {
+                Verdict::Fail(format!(
+                    "it changed from {} to {} (stable since {})",
+                    show_val(c.reference),
+                    show_val(cur),
+                    t(*a)
+                ))
+            } else if now >= end {
+                Verdict::Pass
+            } else {
+                Verdict::Open
+            }
+        }
+        Win::Stable {
+            after: Start::Event(ev),
+            for_ns,
+        } => {
+            let cur = c.cond.eval(f);
+            while c
+                .open
+                .front()
+                .is_some_and(|&s| s.saturating_add(*for_ns) < now)
+            {
+                c.open.pop_front();
+            }
+            if let Some(&s) = c.open.front() {
+                if !same(cur, c.reference) {
+                    return Verdict::Fail(format!(
+                        "it changed from {} to {}, {} after the event at {}",
+                        show_val(c.reference),
+                        show_val(cur),
+                        t(now.saturating_sub(s)),
+                        t(s)
+                    ));
+                }
+            }
+            if ev.truth(f) {
+                c.seen = true;
+                c.open.push_back(now);
+                c.reference = cur;
+            }
+            Verdict::Open
+        }
     }
 }
 
@@ -88,123 +697,12 @@ enum ColSrc {
 
 struct Observer<W: Write> {
     sim: Rc<RefCell<Sim>>,
-    refs: Vec<Ref>,
-    vals: Vec<Val>,
-    checks: Vec<Check>,
-    failures: Vec<Failure>,
-    last_ns: i64,
+    judge: Judge,
     trace: Option<(Vec<Column>, W)>,
     header_written: bool,
-    duration_ns: i64,
-}
-
-fn t(ns: i64) -> String {
-    format_duration(ns, false)
 }
 
 impl<W: Write> Observer<W> {
-    fn values(&self, names: &[usize], image: &[u8]) -> String {
-        let sim = self.sim.borrow();
-        names
-            .iter()
-            .filter_map(|&i| self.refs.get(i))
-            .map(|r| format!("{} = {}", r.name, r.show(image, &sim)))
-            .collect::<Vec<_>>()
-            .join(", ")
-    }
-
-    fn fail(&mut self, k: usize, at: i64, reason: String, image: &[u8]) {
-        let Some(c) = self.checks.get(k) else { return };
-        let f = Failure {
-            what: format!("expect {}", c.text),
-            line: c.line,
-            at_ns: at,
-            reason,
-            values: self.values(&c.names, image),
-        };
-        self.failures.push(f);
-    }
-
-    fn judge(&mut self, now: i64, image: &[u8]) {
-        for k in 0..self.checks.len() {
-            let Some(c) = self.checks.get(k) else {
-                continue;
-            };
-            if c.done {
-                continue;
-            }
-            let holds = c.cond.truth(&self.vals);
-            let verdict = match c.when {
-                When::At(at) if now >= at => Some((!holds).then(|| "it is FALSE".to_string())),
-                When::At(_) => None,
-                When::Within { after, within } => {
-                    let end = after.saturating_add(within);
-                    if holds && now > after && now <= end {
-                        Some(None)
-                    } else if now >= end {
-                        Some(Some(format!(
-                            "it did not become TRUE in ({}, {}]",
-                            t(after),
-                            t(end)
-                        )))
-                    } else {
-                        None
-                    }
-                }
-                When::Always { from, to } => {
-                    let inside = now >= from && to.is_none_or(|b| now <= b);
-                    if inside && !holds {
-                        Some(Some("it is FALSE".to_string()))
-                    } else if to.is_some_and(|b| now >= b) {
-                        Some(None)
-                    } else {
-                        None
-                    }
-                }
-            };
-            if let Some(v) = verdict {
-                if let Some(c) = self.checks.get_mut(k) {
-                    c.done = true;
-                }
-                if let Some(reason) = v {
-                    self.fail(k, now, reason, image);
-                }
-            }
-        }
-    }
-
-    /// Expectations still open when the run ends.
-    fn finish(&mut self, image: &[u8]) {
-        let end = self.last_ns;
-        for k in 0..self.checks.len() {
-            let Some(c) = self.checks.get(k) else {
-                continue;
-            };
-            if c.done {
-                continue;
-            }
-            let reason = match c.when {
-                // The state at the end of the run is the state at its
-                // duration: `expect at 60s` of a 60 s run is judged on it.
-                When::At(at) if at <= self.duration_ns => {
-                    if let Some(c) = self.checks.get_mut(k) {
-                        c.done = true;
-                    }
-                    if self.checks.get(k).is_some_and(|c| c.cond.truth(&self.vals)) {
-                        continue;
-                    }
-                    "it is FALSE at the end of the run".to_string()
-                }
-                When::At(at) => format!("the run ends at {} before {}", t(self.duration_ns), t(at)),
-                When::Within { .. } => {
-                    format!("it did not become TRUE before the run ended at {}", t(end))
-                }
-                When::Always { .. } => continue,
-            };
-            self.fail(k, end, reason, image);
-        }
-    }
-
     fn write_row(&mut self, now: i64, image: &[u8]) -> Result<(), String> {
         let Some((cols, out)) = &mut self.trace else {
             return Ok(());
@@ -238,14 +736,7 @@ impl<W: Write> Observer<W> {
 
 impl<W: Write> ScanObserver for Observer<W> {
     fn after_scan(&mut self, now: i64, image: &[u8]) -> Result<(), String> {
-        self.last_ns = now;
-        {
-            let sim = self.sim.borrow();
-            self.vals.clear();
-            self.vals
-                .extend(self.refs.iter().map(|r| r.read(image, &sim)));
-        }
-        self.judge(now, image);
+        self.judge.after_scan(now, image, &self.sim);
         self.write_row(now, image)
     }
 }
@@ -312,56 +803,25 @@ pub fn run_on<E: Executor, W: Write>(
     scn: &Scenario,
     trace: Option<W>,
 ) -> Result<Outcome, Vec<Diagnostic>> {
-    let plant = project.new_plant()?.ok_or_else(|| {
-        vec![Diagnostic::error(
-            Code::E301,
-            Span::new(project.file, 0, 0),
-            "the project has no [plant]: a scenario needs a plant model",
-        )]
-    })?;
-    let (bindings, diags) = bind(
-        project.plant.as_ref().ok_or_else(Vec::new)?,
-        plant.as_ref(),
-        program,
-    );
-    let Some(bindings) = bindings else {
-        return Err(diags);
+    let (plant, bindings) = match (project.new_plant()?, &project.plant) {
+        (Some(plant), Some(spec)) => {
+            let (bindings, diags) = bind(spec, plant.as_ref(), program);
+            let Some(bindings) = bindings else {
+                return Err(diags);
+            };
+            (plant, bindings)
+        }
+        _ => (
+            Box::new(NoPlant) as Box<dyn automat_plant::Plant>,
+            Vec::new(),
+        ),
     };
     let scope = Scope {
         program,
         plant: plant.as_ref(),
         bindings: &bindings,
     };
-    let mut errors = Vec::new();
-    let mut refs = Vec::new();
-    let mut checks = Vec::new();
-    for e in &scn.expects {
-        match scope.condition(&e.cond, &mut refs) {
-            Ok(cond) => {
-                let mut names = Vec::new();
-                cond_refs(&cond, &mut names);
-                checks.push(Check {
-                    when: e.when.clone(),
-                    cond,
-                    text: e.text.clone(),
-                    line: e.line,
-                    names,
-                    done: false,
-                });
-            }
-            Err(d) => errors.push(d),
-        }
-    }
-    let mut actions = Vec::new();
-    for a in &scn.actions {
-        match scope.action(a) {
-            Ok(list) => actions.extend(list),
-            Err(d) => errors.push(d),
-        }
-    }
-    if !errors.is_empty() {
-        return Err(errors);
-    }
+    let Prepared { actions, judge } = prepare(&scope, scn)?;
     let seed = scn
         .seed
         .or(project.plant.as_ref().map(|p| p.seed))
@@ -370,20 +830,17 @@ pub fn run_on<E: Executor, W: Write>(
     for (at, a) in actions {
         sim.schedule(at, a);
     }
-    let cols = columns(&sim, program, &refs);
+    let cols = columns(&sim, program, judge.refs());
     let sim = Rc::new(RefCell::new(sim));
     let mut obs = Observer {
         sim: Rc::clone(&sim),
-        vals: Vec::with_capacity(refs.len()),
-        refs,
-        checks,
-        failures: Vec::new(),
-        last_ns: 0,
+        judge,
         trace: trace.map(|w| (cols, w)),
         header_written: false,
-        duration_ns: scn.duration_ns,
     };
     let mut exec = PlantExec::new(exec, Rc::clone(&sim));
+    obs.judge
+        .start(automat_runtime::Executor::image(&exec), &sim.borrow());
     let cfg = RunConfig {
         cycle_time_ns: project.cycle_time_ns,
         clock: ClockMode::Virtual,
@@ -403,8 +860,10 @@ pub fn run_on<E: Executor, W: Write>(
         run_scan(&mut exec, &cfg, &mut env)
     };
     let image = automat_runtime::Executor::image(&exec).to_vec();
+    let mut failures = Vec::new();
+    let mut ended = true;
     match report {
-        Err(e) => obs.failures.push(Failure {
+        Err(e) => failures.push(Failure {
             what: "the run".into(),
             line: 0,
             at_ns: 0,
@@ -412,25 +871,37 @@ pub fn run_on<E: Executor, W: Write>(
             values: String::new(),
         }),
         Ok(r) => match r.end {
-            RunEnd::Fault(f) => obs.failures.push(Failure {
+            RunEnd::Fault(f) => failures.push(Failure {
                 what: "the program".into(),
                 line: 0,
                 at_ns: f.plc_time_ns,
                 reason: format!("runtime fault: {f}"),
                 values: String::new(),
             }),
-            RunEnd::Observer(e) => obs.failures.push(Failure {
+            RunEnd::Observer(e) => failures.push(Failure {
                 what: "the trace".into(),
                 line: 0,
-                at_ns: obs.last_ns,
+                at_ns: obs.judge.last_ns,
                 reason: e,
                 values: String::new(),
             }),
-            _ => obs.finish(&image),
+            _ => ended = false,
         },
     }
+    let end_ns = obs.judge.last_ns;
+    if let Some((_, mut w)) = obs.trace.take() {
+        let _ = w.flush();
+    }
+    let Observer { judge, .. } = obs;
+    if ended {
+        // The expectations met before the run stopped keep their verdicts;
+        // what was still open is not judged.
+        failures.extend(judge.failures);
+    } else {
+        failures.extend(judge.finish(&image, &sim.borrow()));
+    }
     for (at, e) in &sim.borrow().errors {
-        obs.failures.push(Failure {
+        failures.push(Failure {
             what: "a plant command".into(),
             line: 0,
             at_ns: *at,
@@ -438,12 +909,6 @@ pub fn run_on<E: Executor, W: Write>(
             values: String::new(),
         });
     }
-    if let Some((_, mut w)) = obs.trace.take() {
-        let _ = w.flush();
-    }
-    obs.failures.sort_by_key(|f| f.at_ns);
-    Ok(Outcome {
-        failures: obs.failures,
-        end_ns: obs.last_ns,
-    })
+    failures.sort_by_key(|f| f.at_ns);
+    Ok(Outcome { failures, end_ns })
 }

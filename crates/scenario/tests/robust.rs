@@ -72,6 +72,25 @@ const SCN_WORDS: &[&str] = &[
     "k=",
     "arr[1,",
     "a[]",
+    "when",
+    "then",
+    "stable",
+    "rise(",
+    "fall(x)",
+    "change(",
+    "prev(",
+    "count(",
+    "abs(",
+    "min(1,",
+    "max(",
+    "+",
+    "-",
+    "*",
+    "/",
+    "MOD",
+    ",",
+    "-1e-3",
+    "T#-1s",
 ];
 
 const SCN_NESTS: &[(&str, &str)] = &[
@@ -81,6 +100,12 @@ const SCN_NESTS: &[(&str, &str)] = &[
     ("NOT (", ")"),
     ("x AND ", ""),
     ("(x OR ", ")"),
+    ("rise(", ")"),
+    ("count(", ")"),
+    ("abs(", ")"),
+    ("min(1, ", ")"),
+    ("- ", ""),
+    ("x + ", ""),
 ];
 
 const HEADER_WORDS: &[&str] = &[
@@ -144,11 +169,19 @@ fn target(toml: &Path) -> Option<Target> {
         &project.libraries,
     )
     .ok()?;
-    let plant = project.new_plant().ok()??;
-    let spec = project.plant.as_ref()?;
-    let (bindings, _) = bind(spec, plant.as_ref(), &program);
+    // A project without [plant] is checked against no plant.
+    let (plant, bindings) = match (project.new_plant().ok()?, project.plant.as_ref()) {
+        (Some(plant), Some(spec)) => {
+            let (bindings, _) = bind(spec, plant.as_ref(), &program);
+            (plant, bindings?)
+        }
+        _ => (
+            Box::new(automat_scenario::NoPlant) as Box<dyn automat_plant::Plant>,
+            Vec::new(),
+        ),
+    };
     Some(Target {
-        bindings: bindings?,
+        bindings,
         project,
         program,
         plant,
@@ -200,20 +233,29 @@ fn scenario_case(text: &str, target: Option<&Target>, run: bool) -> bool {
     };
     let mut refs = Vec::new();
     for e in &scn.expects {
-        match scope.condition(&e.cond, &mut refs) {
-            Ok(c) => {
-                let _ = c.truth(&[]);
-            }
-            Err(d) => assert!(
-                matches!(d.code, Code::E321 | Code::E322) && d.span.end as usize <= text.len(),
+        if let Err(d) = automat_scenario::run::check_expect(&scope, e, &mut refs) {
+            assert!(
+                matches!(d.code, Code::E321 | Code::E322 | Code::E325 | Code::E326)
+                    && d.span.end as usize <= text.len(),
                 "checker diagnostic {d:?}"
-            ),
+            );
+        }
+        if let Ok(c) = scope.condition(&e.cond, &mut refs) {
+            let _ = c.truth(automat_scenario::check::Frame::of(&[]));
+        }
+    }
+    for r in &scn.reactions {
+        if let Err(d) = scope.event(&r.event, &mut refs) {
+            assert!(
+                matches!(d.code, Code::E321 | Code::E322 | Code::E325 | Code::E326),
+                "checker diagnostic {d:?}"
+            );
         }
     }
     for a in &scn.actions {
         if let Err(d) = scope.action(a) {
             assert!(
-                matches!(d.code, Code::E302 | Code::E321 | Code::E322)
+                matches!(d.code, Code::E302 | Code::E321 | Code::E322 | Code::E325)
                     && d.span.end as usize <= text.len(),
                 "checker diagnostic {d:?}"
             );
