@@ -204,6 +204,7 @@ pub fn run_sources(args: &RunArgs) -> Result<Outcome, Outcome> {
         safe_state: Vec::new(),
         users: Vec::new(),
         tasks: Vec::new(),
+        runtime: automat_project::RuntimeSpec::default(),
         warnings: Vec::new(),
     };
     let loaded = Loaded {

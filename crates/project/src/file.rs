@@ -276,6 +276,16 @@ fn span_of(file: FileId, r: std::ops::Range<usize>) -> Span {
 
 /// Reads and checks `automat.toml` at `path` (the text goes into `map`).
 pub fn load(path: &Path, map: &mut SourceMap) -> Result<Project, Vec<Diagnostic>> {
+    // Not read whole when it is far too big (a device, a huge file).
+    let big = std::fs::metadata(path).is_ok_and(|m| m.len() > MAX_FILE_BYTES as u64 * 4);
+    if big {
+        let file = map.add(path.display().to_string(), String::new());
+        return Err(vec![Diagnostic::error(
+            Code::E300,
+            Span::new(file, 0, 0),
+            format!("the project file is larger than the {MAX_FILE_BYTES} bytes a project file may have"),
+        )]);
+    }
     let text = std::fs::read_to_string(path).map_err(|e| {
         let file = map.add(path.display().to_string(), String::new());
         vec![Diagnostic::error(
@@ -288,8 +298,23 @@ pub fn load(path: &Path, map: &mut SourceMap) -> Result<Project, Vec<Diagnostic>
     parse(path, file, &text)
 }
 
+/// The largest project file read: a real one is a few KB; a bigger one is
+/// a mistake (or hostile) and would take seconds to parse.
+pub const MAX_FILE_BYTES: usize = 1 << 20;
+
 /// Parses the text of a project file already in a source map as `file`.
 pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagnostic>> {
+    if text.len() > MAX_FILE_BYTES {
+        return Err(vec![Diagnostic::error(
+            Code::E300,
+            Span::new(file, 0, 0),
+            format!(
+                "the project file has {} bytes, more than the {} a project file may have",
+                text.len(),
+                MAX_FILE_BYTES
+            ),
+        )]);
+    }
     let raw: RawFile = toml::from_str(text).map_err(|e| {
         let span = e.span().map_or(Span::new(file, 0, 0), |r| span_of(file, r));
         vec![Diagnostic::error(

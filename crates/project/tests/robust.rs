@@ -239,3 +239,25 @@ fn a_project_file_that_is_not_utf8_is_an_error() {
         diags[0].message
     );
 }
+
+/// A project file over the size limit is one E300, quickly, whether it is
+/// a little over (read, then refused) or far over (refused unread).
+#[test]
+fn a_huge_project_file_is_refused_at_once() {
+    let dir = std::env::temp_dir().join(format!("automat-robust-big-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let path = dir.join(file::FILE_NAME);
+    for size in [file::MAX_FILE_BYTES + 1, file::MAX_FILE_BYTES * 8] {
+        let mut text = String::from("[project]\nname = \"x\"\n#");
+        text.push_str(&"a".repeat(size - text.len()));
+        std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{e}"));
+        let start = Instant::now();
+        let mut map = SourceMap::new();
+        let diags = automat_project::load(&path, &mut map).expect_err("too big");
+        assert!(start.elapsed().as_secs_f64() < 1.0);
+        assert_eq!(diags.len(), 1);
+        assert_eq!(diags[0].code, Code::E300);
+        assert!(diags[0].message.contains("1048576"), "{}", diags[0].message);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

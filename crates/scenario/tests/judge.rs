@@ -45,6 +45,7 @@ fn build() -> (Program, Project) {
         safe_state: Vec::new(),
         users: Vec::new(),
         tasks: Vec::new(),
+        runtime: automat_project::RuntimeSpec::default(),
         warnings: Vec::new(),
     };
     (program, project)
