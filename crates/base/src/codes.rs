@@ -303,6 +303,18 @@ codes! {
     E324 => "scenario outside a project",
         "A `.scn` file must lie in a project folder: a folder with `automat.toml` at or above it.";
 
+    // ---- Modbus (automat-fieldbus, `[modbus]` in automat.toml, docs/modbus.md) ----
+    E340 => "invalid Modbus configuration",
+        "A `[modbus.server]`, `[[modbus.server.map]]`, `[[modbus.client]]` or block table of `automat.toml` has a key of the wrong form: an address that is not ADDR:PORT, a table that is not coils, discrete_inputs, input_registers or holding_registers, a Modbus address or count out of range (addresses 0..=65535, counts within the protocol's limits), a duration that does not parse, a block with neither or both of `to` and `from`, or two devices of one name.";
+    E341 => "Modbus entry names an unknown variable",
+        "A Modbus map entry, a client block or a device's status variable names a path or direct address that does not exist in the compiled program.";
+    E342 => "Modbus entry of the wrong type or size",
+        "The variable does not fit the Modbus table: coils and discrete inputs take BOOLs (or a bit address such as `%IX0.0`), registers take one elementary value of 8 to 64 bits (or a word address such as `%IW0`); a count that differs from what the variables hold, a block reaching past the end of its area, or a status variable that is not BOOL (connected) or an integer (errors, last_error).";
+    E343 => "overlapping Modbus addresses",
+        "Two explicit `[[modbus.server.map]]` entries give the same Modbus address of one table: each address of a table maps to one place.";
+    E344 => "read-only variable mapped for writing",
+        "A CONSTANT or compiler-generated variable (an SFC step flag or time) is mapped where a Modbus client or device would write it: as a coil or holding register of the server, or as the target of a client's read block or status variable. Map it as a discrete input or input register instead.";
+
     // ---- warnings ----
     W001 => "unused variable",
         "A local variable is declared but never read or written.";

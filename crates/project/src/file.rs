@@ -51,6 +51,11 @@ struct RawFile {
     users: BTreeMap<String, RawUser>,
     #[serde(default)]
     tasks: BTreeMap<Spanned<String>, RawTask>,
+    /// `[modbus]`: read and checked by `automat-fieldbus` from the same
+    /// text (it needs the compiled program).
+    #[serde(default)]
+    #[allow(dead_code)]
+    modbus: Option<serde::de::IgnoredAny>,
 }
 
 #[derive(Deserialize)]
