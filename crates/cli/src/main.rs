@@ -29,6 +29,7 @@ mod cmd_explain;
 mod cmd_export;
 mod cmd_online;
 mod cmd_passwd;
+mod cmd_plant;
 mod cmd_run;
 mod cmd_test;
 mod engines;
@@ -63,6 +64,7 @@ enum Command {
     Test(cmd_test::TestArgs),
     Plot(plot::PlotArgs),
     Passwd(cmd_passwd::PasswdArgs),
+    Plant(cmd_plant::PlantArgs),
 }
 
 /// Exit status of a command.
@@ -91,6 +93,7 @@ fn main() -> ExitCode {
         Command::Test(args) => cmd_test::run(&args),
         Command::Plot(args) => plot::run(&args),
         Command::Passwd(args) => cmd_passwd::run(&args),
+        Command::Plant(args) => cmd_plant::run(&args),
     };
     ExitCode::from(match outcome {
         Outcome::Ok => 0,

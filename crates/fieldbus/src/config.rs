@@ -120,7 +120,11 @@ impl Ctx<'_> {
         match automat_runtime::timearg::parse_duration(d.get_ref()) {
             Ok(ns) if ns > 0 => Duration::from_nanos(ns as u64),
             Ok(_) => {
-                self.err(Code::E340, d.span(), format!("{what} must be longer than 0"));
+                self.err(
+                    Code::E340,
+                    d.span(),
+                    format!("{what} must be longer than 0"),
+                );
                 default
             }
             Err(e) => {
@@ -228,7 +232,10 @@ fn server_config(cx: &mut Ctx, s: RawServer) -> Option<ServerConfig> {
     };
     let mut options = server::Options::new(addr.unwrap_or(SocketAddr::from(([127, 0, 0, 1], 0))));
     if let Some(m) = &s.max_connections {
-        match usize::try_from(*m.get_ref()).ok().filter(|n| (1..=1024).contains(n)) {
+        match usize::try_from(*m.get_ref())
+            .ok()
+            .filter(|n| (1..=1024).contains(n))
+        {
             Some(n) => options.max_connections = n,
             None => cx.err(
                 Code::E340,
@@ -369,14 +376,20 @@ fn device(cx: &mut Ctx, d: RawDevice) -> Option<DeviceSpec> {
     let timeout = cx.duration(&d.timeout, "timeout", Duration::from_millis(500));
     let retries = match &d.retries {
         None => 1,
-        Some(r) => u32::try_from(*r.get_ref()).ok().filter(|n| *n <= 10).unwrap_or_else(|| {
-            cx.err(
-                Code::E340,
-                r.span(),
-                format!("device `{name}`: retries must be 0..=10, not {}", r.get_ref()),
-            );
-            1
-        }),
+        Some(r) => u32::try_from(*r.get_ref())
+            .ok()
+            .filter(|n| *n <= 10)
+            .unwrap_or_else(|| {
+                cx.err(
+                    Code::E340,
+                    r.span(),
+                    format!(
+                        "device `{name}`: retries must be 0..=10, not {}",
+                        r.get_ref()
+                    ),
+                );
+                1
+            }),
     };
     let on_loss = match &d.on_loss {
         None => OnLoss::Zero,
@@ -551,13 +564,20 @@ fn block(cx: &mut Ctx, dev: &str, b: &RawBlock, read: bool) -> Option<Block> {
     };
     let count = match &b.count {
         None => None,
-        Some(c) => match u16::try_from(*c.get_ref()).ok().filter(|n| (1..=max).contains(n)) {
+        Some(c) => match u16::try_from(*c.get_ref())
+            .ok()
+            .filter(|n| (1..=max).contains(n))
+        {
             Some(n) => Some(n),
             None => {
                 cx.err(
                     Code::E340,
                     c.span(),
-                    format!("count {} is outside 1..={max} for {}", c.get_ref(), table.name()),
+                    format!(
+                        "count {} is outside 1..={max} for {}",
+                        c.get_ref(),
+                        table.name()
+                    ),
                 );
                 return None;
             }
@@ -571,7 +591,10 @@ fn block(cx: &mut Ctx, dev: &str, b: &RawBlock, read: bool) -> Option<Block> {
                     cx.err(
                         Code::E344,
                         place.span(),
-                        format!("`{}` is read-only: device `{dev}` cannot write it", p.trim()),
+                        format!(
+                            "`{}` is read-only: device `{dev}` cannot write it",
+                            p.trim()
+                        ),
                     );
                     return None;
                 }

@@ -269,7 +269,9 @@ impl Map {
     }
 
     fn reg_seg(&self, table: Table, a: u32) -> Option<&RegSeg> {
-        self.regs(table).iter().find(|s| a >= s.start && a < s.end())
+        self.regs(table)
+            .iter()
+            .find(|s| a >= s.start && a < s.end())
     }
 
     pub fn read_bits(
@@ -328,11 +330,7 @@ impl Map {
             Stored::Bit { offset, .. } => (*offset, 1),
             Stored::Bytes { offset, bytes } => (*offset, bytes.len()),
         };
-        if self
-            .readonly
-            .iter()
-            .any(|r| at < r.end && r.start < at + n)
-        {
+        if self.readonly.iter().any(|r| at < r.end && r.start < at + n) {
             return Err(Exception::IllegalDataAddress);
         }
         Ok(())
@@ -410,7 +408,11 @@ impl Map {
                     what: match &s.at {
                         BitAt::Packed { .. } => {
                             let a = if table == Table::Coils { "Q" } else { "I" };
-                            format!("%{a}X0.0 .. %{a}X{}.{}", (s.count - 1) / 8, (s.count - 1) % 8)
+                            format!(
+                                "%{a}X0.0 .. %{a}X{}.{}",
+                                (s.count - 1) / 8,
+                                (s.count - 1) % 8
+                            )
                         }
                         BitAt::Single { .. } => "explicit BOOL".into(),
                     },
@@ -451,7 +453,9 @@ fn symbol_size(ty: &SymbolType) -> usize {
     match ty {
         SymbolType::Elementary(e)
         | SymbolType::Enum { base: e, .. }
-        | SymbolType::Subrange { base: e, .. } => e.bit_width().map_or(0, |w| w.div_ceil(8)) as usize,
+        | SymbolType::Subrange { base: e, .. } => {
+            e.bit_width().map_or(0, |w| w.div_ceil(8)) as usize
+        }
         SymbolType::String { cap } => *cap as usize + 2,
         SymbolType::WString { cap } => *cap as usize * 2 + 2,
         SymbolType::Array { dims, stride, .. } => {

@@ -133,9 +133,15 @@ pub enum Response {
     Bits(Vec<bool>),
     Registers(Vec<u16>),
     /// FC 5 and 6: the request echoed.
-    Echo { addr: u16, value: u16 },
+    Echo {
+        addr: u16,
+        value: u16,
+    },
     /// FC 15 and 16: address and quantity written.
-    Written { addr: u16, count: u16 },
+    Written {
+        addr: u16,
+        count: u16,
+    },
 }
 
 /// An MBAP header.
@@ -591,12 +597,17 @@ mod tests {
         assert_eq!(pdu, [0x03, 0x00, 0x6B, 0x00, 0x03]);
         let mut f = Vec::new();
         frame(0x1234, 0x11, &pdu, &mut f);
-        assert_eq!(f, [0x12, 0x34, 0, 0, 0, 6, 0x11, 0x03, 0x00, 0x6B, 0x00, 0x03]);
+        assert_eq!(
+            f,
+            [0x12, 0x34, 0, 0, 0, 6, 0x11, 0x03, 0x00, 0x6B, 0x00, 0x03]
+        );
         let mut resp = Vec::new();
         encode_response(3, &Response::Registers(vec![0x022B, 0, 0x0064]), &mut resp);
         assert_eq!(resp, [0x03, 0x06, 0x02, 0x2B, 0x00, 0x00, 0x00, 0x64]);
         let mut coils = Vec::new();
-        let bits = [true, false, true, true, false, false, true, true, true, true];
+        let bits = [
+            true, false, true, true, false, false, true, true, true, true,
+        ];
         encode_response(1, &Response::Bits(bits.to_vec()), &mut coils);
         assert_eq!(coils, [0x01, 0x02, 0xCD, 0x03]);
     }
@@ -612,10 +623,22 @@ mod tests {
             (&[0x03, 0xFF, 0xFF, 0, 2], 3, Exception::IllegalDataAddress),
             (&[0x03, 0, 0], 3, Exception::IllegalDataValue),
             (&[0x05, 0, 1, 0x12, 0x34], 5, Exception::IllegalDataValue),
-            (&[0x10, 0, 0, 0, 2, 3, 0, 1, 0], 16, Exception::IllegalDataValue),
+            (
+                &[0x10, 0, 0, 0, 2, 3, 0, 1, 0],
+                16,
+                Exception::IllegalDataValue,
+            ),
             (&[0x10, 0, 0, 0, 124, 248], 16, Exception::IllegalDataValue),
-            (&[0x0F, 0, 0, 0, 9, 1, 0xFF], 15, Exception::IllegalDataValue),
-            (&[0x17, 0, 0, 0, 1, 0, 0, 0, 1, 2, 0], 23, Exception::IllegalDataValue),
+            (
+                &[0x0F, 0, 0, 0, 9, 1, 0xFF],
+                15,
+                Exception::IllegalDataValue,
+            ),
+            (
+                &[0x17, 0, 0, 0, 1, 0, 0, 0, 1, 2, 0],
+                23,
+                Exception::IllegalDataValue,
+            ),
         ];
         for (pdu, fc, e) in cases {
             assert_eq!(decode_request(pdu), Err((fc, e)), "{pdu:?}");
@@ -640,7 +663,10 @@ mod tests {
             split_frame(&[0, 1, 0, 0, 0xFF, 0xFF, 1]),
             Err(FrameError::Length(0xFFFF))
         );
-        assert_eq!(split_frame(&[0, 1, 0, 0, 0, 1, 1]), Err(FrameError::Length(1)));
+        assert_eq!(
+            split_frame(&[0, 1, 0, 0, 0, 1, 1]),
+            Err(FrameError::Length(1))
+        );
     }
 
     #[test]

@@ -109,7 +109,10 @@ impl PlantMap {
                         } else {
                             ("INT ", a.to_string())
                         };
-                        format!("  {range:>5}  {:<12} {ty}  {:?}: {}\n", s.name, s.dir, s.doc)
+                        format!(
+                            "  {range:>5}  {:<12} {ty}  {:?}: {}\n",
+                            s.name, s.dir, s.doc
+                        )
                     }),
                     Item::QuantityWord { quantity, word: 0 } => quantities.get(quantity).map(|q| {
                         format!(

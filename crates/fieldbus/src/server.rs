@@ -224,8 +224,8 @@ impl Drop for Server {
 
 /// Binds and starts serving `dev`.
 pub fn start(dev: Arc<dyn Device>, opts: Options) -> Result<Server, String> {
-    let listener = TcpListener::bind(opts.addr)
-        .map_err(|e| format!("cannot listen on {}: {e}", opts.addr))?;
+    let listener =
+        TcpListener::bind(opts.addr).map_err(|e| format!("cannot listen on {}: {e}", opts.addr))?;
     let addr = listener
         .local_addr()
         .map_err(|e| format!("cannot listen on {}: {e}", opts.addr))?;
@@ -289,7 +289,9 @@ fn accept_loop(listener: TcpListener, dev: Arc<dyn Device>, opts: Options, stop:
 fn serve(mut stream: TcpStream, dev: &dyn Device, stop: &AtomicBool, idle: Duration) {
     if stream.set_nonblocking(false).is_err()
         || stream.set_read_timeout(Some(POLL)).is_err()
-        || stream.set_write_timeout(Some(Duration::from_secs(5))).is_err()
+        || stream
+            .set_write_timeout(Some(Duration::from_secs(5)))
+            .is_err()
     {
         return;
     }
@@ -423,7 +425,10 @@ mod tests {
             .contains("192.0.2.1".parse().unwrap()));
         assert!(Allow::parse("10.0.0.0/33").is_err());
         assert!(Allow::parse("host").is_err());
-        assert_eq!(parse_addr("5020"), Ok(SocketAddr::from(([127, 0, 0, 1], 5020))));
+        assert_eq!(
+            parse_addr("5020"),
+            Ok(SocketAddr::from(([127, 0, 0, 1], 5020)))
+        );
         assert!(parse_addr("x:1").is_err());
     }
 
