@@ -247,7 +247,10 @@ pub(crate) enum Command {
     Force(force::Force),
     Unforce(Option<value::Stored>),
     Control(Control),
-    Subscribe { period_ns: i64, sink: Sink },
+    Subscribe {
+        period_ns: i64,
+        sink: Sink,
+    },
     Quit,
 }
 
