@@ -176,7 +176,7 @@ fn main() {
                             errors.fetch_add(1, Ordering::Relaxed);
                         }
                     }
-                    if n % 10 == 0 {
+                    if n.is_multiple_of(10) {
                         let values: Vec<u16> =
                             (0..10).map(|i| (n as u16).wrapping_add(i)).collect();
                         match c.call(&Request::WriteRegisters {

@@ -191,9 +191,12 @@ pub fn parse_header(b: &[u8; HEADER]) -> Result<Header, FrameError> {
     })
 }
 
-/// The first whole frame of `buf`: its header, its PDU and the bytes it
-/// takes; `Ok(None)` while the frame is incomplete.
-pub fn split_frame(buf: &[u8]) -> Result<Option<(Header, &[u8], usize)>, FrameError> {
+/// A whole frame at the start of a buffer: its header, its PDU and the
+/// bytes it takes.
+pub type Split<'a> = (Header, &'a [u8], usize);
+
+/// The first whole frame of `buf`; `Ok(None)` while the frame is incomplete.
+pub fn split_frame(buf: &[u8]) -> Result<Option<Split<'_>>, FrameError> {
     let Some(head) = buf.get(..HEADER) else {
         return Ok(None);
     };

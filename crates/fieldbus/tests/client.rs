@@ -161,11 +161,16 @@ fn inputs_come_in_outputs_go_out_and_a_lost_device_reads_zero() {
 #[test]
 fn hold_keeps_the_last_inputs_and_a_device_never_reached_counts_errors() {
     // A port with nothing listening.
-    let free = TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap();
+    let free = TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap();
     let mut clients = Clients::start(vec![spec(free, OnLoss::Hold)]).unwrap();
     let mut image = vec![0u8; 20];
     image[4] = 0x99;
-    until("connection errors counted", || clients.status()[0].1.errors >= 2);
+    until("connection errors counted", || {
+        clients.status()[0].1.errors >= 2
+    });
     clients.inputs(&mut image);
     assert_eq!(image[4], 0x99, "hold keeps what the inputs were");
     assert_eq!(image[12], 0);
@@ -184,7 +189,9 @@ fn exceptions_of_the_device_are_its_last_error() {
     // Holding 7..8 is past the device's 8 registers: exception 02.
     s.reads[1].addr = 7;
     let clients = Clients::start(vec![s]).unwrap();
-    until("the exception is seen", || clients.status()[0].1.last_error == 2);
+    until("the exception is seen", || {
+        clients.status()[0].1.last_error == 2
+    });
     let st = &clients.status()[0].1;
     assert!(st.connected, "an exception keeps the connection");
     assert_eq!(st.last_error_text, "exception 02 (illegal data address)");
