@@ -469,4 +469,27 @@ mod tests {
         assert_eq!(got, [0, 3, 0, 0, 0, 5, 1, 3, 2, 0, 42]);
         drop(server);
     }
+
+    #[test]
+    fn clients_outside_the_allow_list_are_closed_at_once() {
+        let dev: Arc<dyn Device> = Arc::new(Mem::default());
+        let mut opts = Options::new(SocketAddr::from(([127, 0, 0, 1], 0)));
+        opts.allow = vec![Allow::parse("10.0.0.0/8").unwrap()];
+        let server = start(Arc::clone(&dev), opts).unwrap();
+        let mut s = TcpStream::connect(server.addr).unwrap();
+        s.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+        let _ = s.write_all(&[0, 1, 0, 0, 0, 6, 1, 3, 0, 0, 0, 1]);
+        let mut one = [0u8; 1];
+        assert!(matches!(s.read(&mut one), Ok(0) | Err(_)));
+        drop(server);
+        let mut opts = Options::new(SocketAddr::from(([127, 0, 0, 1], 0)));
+        opts.allow = vec![Allow::parse("127.0.0.0/8").unwrap()];
+        let server = start(dev, opts).unwrap();
+        let mut s = TcpStream::connect(server.addr).unwrap();
+        s.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+        s.write_all(&[0, 1, 0, 0, 0, 6, 1, 3, 0, 0, 0, 1]).unwrap();
+        let mut got = [0u8; 11];
+        s.read_exact(&mut got).unwrap();
+        assert_eq!(got, [0, 1, 0, 0, 0, 5, 1, 3, 2, 0, 0]);
+    }
 }
