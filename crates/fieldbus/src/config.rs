@@ -12,7 +12,7 @@ use crate::pdu::{self, Table};
 use crate::server::{self, Allow};
 use automat_base::{Code, Diagnostic, FileId, Span};
 use automat_iec::Elementary;
-use automat_ir::Program;
+use automat_ir::{Program, SymbolType};
 use automat_runtime::{resolve_access, PlaceType};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -264,15 +264,63 @@ fn server_config(cx: &mut Ctx, s: RawServer) -> Option<ServerConfig> {
     addr.map(|_| ServerConfig { options, map })
 }
 
+/// The paths a map entry or block names: a one-dimensional array declared
+/// as a whole variable (`Main.levels`) stands for its elements in order.
+pub(crate) fn expand(program: &Program, path: &str) -> Vec<String> {
+    if let Some(e) = program.symbols.get(path) {
+        if let SymbolType::Array { dims, .. } = &e.ty {
+            if let [(lo, hi)] = dims.as_slice() {
+                if hi >= lo && hi - lo < 2000 {
+                    return (*lo..=*hi).map(|i| format!("{path}[{i}]")).collect();
+                }
+            }
+        }
+    }
+    vec![path.to_string()]
+}
+
 fn entry(cx: &mut Ctx, e: &RawEntry, map: &mut Map, taken: &mut BTreeMap<(Table, u32), String>) {
     let (Some(table), Some(address)) = (cx.table(&e.table), cx.address(&e.address)) else {
         return;
     };
     let order = cx.order(&e.word_order, WordOrder::HighFirst);
-    let path = e.var.get_ref().trim();
+    let mut at = u32::from(address);
+    for path in expand(cx.program, e.var.get_ref().trim()) {
+        let Ok(a16) = u16::try_from(at) else {
+            return cx.err(
+                Code::E340,
+                e.address.span(),
+                format!(
+                    "`{}` runs past Modbus address 65535",
+                    e.var.get_ref().trim()
+                ),
+            );
+        };
+        match entry_one(cx, e, table, a16, order, &path, map, taken) {
+            Some(width) => at += width,
+            None => return,
+        }
+    }
+}
+
+/// One variable of an entry at `address`; its number of addresses.
+#[allow(clippy::too_many_arguments)]
+fn entry_one(
+    cx: &mut Ctx,
+    e: &RawEntry,
+    table: Table,
+    address: u16,
+    order: WordOrder,
+    path: &str,
+    map: &mut Map,
+    taken: &mut BTreeMap<(Table, u32), String>,
+) -> Option<u32> {
     let a = match resolve_access(cx.program, path) {
         Ok(a) => a,
-        Err(m) => return cx.err(Code::E341, e.var.span(), m),
+        Err(m) => {
+            cx.err(Code::E341, e.var.span(), m);
+            return None;
+        }
     };
     if table.writable() && (a.constant || a.generated.is_some()) {
         let what = if a.constant {
@@ -280,7 +328,7 @@ fn entry(cx: &mut Ctx, e: &RawEntry, map: &mut Map, taken: &mut BTreeMap<(Table,
         } else {
             "compiler-generated state"
         };
-        return cx.err(
+        cx.err(
             Code::E344,
             e.var.span(),
             format!(
@@ -293,11 +341,12 @@ fn entry(cx: &mut Ctx, e: &RawEntry, map: &mut Map, taken: &mut BTreeMap<(Table,
                 }
             ),
         );
+        return None;
     }
     let is_bool = a.place.ty == PlaceType::Elementary(Elementary::Bool);
     let width = if table.is_bits() {
         if !is_bool {
-            return cx.err(
+            cx.err(
                 Code::E342,
                 e.var.span(),
                 format!(
@@ -306,12 +355,13 @@ fn entry(cx: &mut Ctx, e: &RawEntry, map: &mut Map, taken: &mut BTreeMap<(Table,
                     table.name()
                 ),
             );
+            return None;
         }
         map.add_bit(table, address, &a.place);
         1
     } else {
         let Some((width, _, _)) = register_shape(&a.place.ty).filter(|_| !is_bool) else {
-            return cx.err(
+            cx.err(
                 Code::E342,
                 e.var.span(),
                 format!(
@@ -319,20 +369,22 @@ fn entry(cx: &mut Ctx, e: &RawEntry, map: &mut Map, taken: &mut BTreeMap<(Table,
                     automat_session::value::type_name(&a.place.ty)
                 ),
             );
+            return None;
         };
         if u32::from(address) + width > 65_536 {
-            return cx.err(
+            cx.err(
                 Code::E340,
                 e.address.span(),
                 format!("`{path}` needs {width} registers from {address}: past 65535"),
             );
+            return None;
         }
         map.add_registers(table, address, &a.place, order);
         width
     };
     for r in u32::from(address)..u32::from(address) + width {
         if let Some(other) = taken.insert((table, r), path.to_string()) {
-            return cx.err(
+            cx.err(
                 Code::E343,
                 e.address.span(),
                 format!(
@@ -340,8 +392,10 @@ fn entry(cx: &mut Ctx, e: &RawEntry, map: &mut Map, taken: &mut BTreeMap<(Table,
                     table.name()
                 ),
             );
+            return None;
         }
     }
+    Some(width)
 }
 
 fn device(cx: &mut Ctx, d: RawDevice) -> Option<DeviceSpec> {
@@ -541,10 +595,11 @@ fn block(cx: &mut Ctx, dev: &str, b: &RawBlock, read: bool) -> Option<Block> {
         return None;
     }
     let paths: Vec<String> = match place.get_ref() {
-        toml::Value::String(s) => vec![s.clone()],
+        toml::Value::String(s) => expand(cx.program, s.trim()),
         toml::Value::Array(items) => items
             .iter()
-            .filter_map(|v| v.as_str().map(str::to_string))
+            .filter_map(|v| v.as_str())
+            .flat_map(|p| expand(cx.program, p.trim()))
             .collect(),
         _ => Vec::new(),
     };

@@ -10,7 +10,8 @@
 //! any path to a coil, discrete input or register range with its IEC type
 //! (BOOL one bit; 8- and 16-bit types one register, sign-extended for
 //! SINT; 32-bit types such as DINT and REAL two, 64-bit four, in the
-//! entry's word order); they win over the default map where both give an
+//! entry's word order; a one-dimensional array maps its elements one
+//! after another); they win over the default map where both give an
 //! address.
 //!
 //! Registers are read from the image as the PLC stores them (little

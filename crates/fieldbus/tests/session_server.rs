@@ -28,6 +28,7 @@ VAR
     m AT %MD1 : DINT;
     speed : REAL := 1.5;
     small : SINT := -3;
+    levels : ARRAY[1..3] OF DINT := [10, -20, 30];
     n : INT;
 END_VAR
 VAR CONSTANT
@@ -275,6 +276,11 @@ address = 201
 var = "Main.coil"
 table = "discrete_inputs"
 address = 500
+
+[[modbus.server.map]]
+var = "Main.levels"
+table = "holding_registers"
+address = 300
 "#,
     )
     .unwrap();
@@ -307,6 +313,17 @@ address = 500
     })
     .unwrap();
     assert_eq!(bits(&mut c, Table::DiscreteInputs, 500, 1), Ok(vec![true]));
+    // An array: its elements one after another, two registers each.
+    assert_eq!(
+        regs(&mut c, Table::HoldingRegisters, 300, 6),
+        Ok(vec![0, 10, 0xFFFF, 0xFFEC, 0, 30])
+    );
+    c.call(&Request::WriteRegisters {
+        addr: 302,
+        values: vec![0, 7],
+    })
+    .unwrap();
+    assert_eq!(read(&s, "Main.levels[2]"), "7");
     // The default map is still there.
     assert_eq!(regs(&mut c, Table::HoldingRegisters, 0, 1), Ok(vec![0]));
     drop(c);
