@@ -16,7 +16,7 @@ use automat_ir::{Program, SymbolType};
 use automat_runtime::{resolve_access, PlaceType};
 use serde::Deserialize;
 use std::collections::BTreeMap;
-use std::net::{SocketAddr, ToSocketAddrs};
+use std::net::SocketAddr;
 use std::time::Duration;
 use toml::Spanned;
 
@@ -398,17 +398,31 @@ fn entry_one(
     Some(width)
 }
 
+/// `IP:PORT`, or `localhost:PORT` (127.0.0.1). No name is looked up:
+/// loading a project never waits for a resolver, and a PLC's remote I/O is
+/// configured by address.
+fn device_addr(s: &str) -> Option<SocketAddr> {
+    let s = s.trim();
+    if let Some(port) = s.strip_prefix("localhost:") {
+        return port
+            .parse::<u16>()
+            .ok()
+            .map(|p| SocketAddr::from(([127, 0, 0, 1], p)));
+    }
+    s.parse().ok()
+}
+
 fn device(cx: &mut Ctx, d: RawDevice) -> Option<DeviceSpec> {
     let name = d.name.get_ref().clone();
     let before = cx.errors.len();
-    let addr = match d.address.get_ref().to_socket_addrs().map(|mut a| a.next()) {
-        Ok(Some(a)) => a,
-        _ => {
+    let addr = match device_addr(d.address.get_ref()) {
+        Some(a) => a,
+        None => {
             cx.err(
                 Code::E340,
                 d.address.span(),
                 format!(
-                    "device `{name}`: address `{}` is not HOST:PORT",
+                    "device `{name}`: address `{}` is not IP:PORT (e.g. 192.168.0.20:502, [fe80::1]:502, localhost:502)",
                     d.address.get_ref()
                 ),
             );
@@ -736,6 +750,12 @@ fn block(cx: &mut Ctx, dev: &str, b: &RawBlock, read: bool) -> Option<Block> {
                 );
             }
             places.push((a.place.offset as usize, a.place.bit));
+        }
+        if places.len() > usize::from(max) {
+            return mismatch(
+                cx,
+                format!("{} bits in one block: at most {max}", places.len()),
+            );
         }
         let n = places.len() as u16;
         (Target::Bools(places), n)
