@@ -186,5 +186,5 @@ fn mutated_modbus_tables_never_crash() {
     }
     eprintln!("modbus tables: {MUTANTS} mutants, {valid} valid");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
-    assert!(valid > 50, "only {valid} mutants read as valid");
+    assert!(valid >= 30, "only {valid} mutants read as valid");
 }
