@@ -275,7 +275,7 @@ codes! {
 
     // ---- projects, plants and scenarios (automat-project, automat-scenario) ----
     E300 => "invalid project file",
-        "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]`, `[bind]`, `[tasks.NAME]` (watchdog, sensitivity; NAME a task of the program, see docs/watchdog.md), `[retain]`, `[safe_state]`, `[users.NAME]` and `[runtime]` (realtime, priority 1 to 99, cpus such as `1` or `0,2-3`; see docs/realtime.md).";
+        "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]`, `[bind]`, `[tasks.NAME]` (watchdog, sensitivity; NAME a task of the program, see docs/watchdog.md), `[retain]`, `[safe_state]`, `[users.NAME]`, `[modbus]` (see docs/modbus.md) and `[runtime]` (realtime, priority 1 to 99, cpus such as `1` or `0,2-3`; see docs/realtime.md).";
     E301 => "unknown plant model",
         "`[plant] model` names no model of the plant library. The message lists every known model.";
     E302 => "unknown plant signal",
@@ -306,6 +306,18 @@ codes! {
         "The project has no `[plant]`, and the scenario uses what only a plant model has: a `plant.<quantity>`, `stuck`, `unstick` or `noise` on a signal, or a `plant` command. Without a plant a scenario drives the program's own variables (`set`, `press`, `release` on variable paths and direct addresses) and checks them; see docs/scenarios.md.";
     E326 => "misplaced scenario function",
         "A function of the scenario language is used where it has no meaning: `count(...)` outside an expectation with a window (`expect C during A..B`, `expect at T C`, `expect always C`) or inside another function's argument; `rise`, `fall`, `change` or `prev` inside one another (they compare one scan with the one before and take plain values). See docs/scenarios.md.";
+
+    // ---- Modbus (automat-fieldbus, `[modbus]` in automat.toml, docs/modbus.md) ----
+    E340 => "invalid Modbus configuration",
+        "A `[modbus.server]`, `[[modbus.server.map]]`, `[[modbus.client]]` or block table of `automat.toml` has a key of the wrong form: an address that is not ADDR:PORT, a table that is not coils, discrete_inputs, input_registers or holding_registers, a Modbus address or count out of range (addresses 0..=65535, counts within the protocol's limits), a duration that does not parse, a block with neither or both of `to` and `from`, or two devices of one name.";
+    E341 => "Modbus entry names an unknown variable",
+        "A Modbus map entry, a client block or a device's status variable names a path or direct address that does not exist in the compiled program.";
+    E342 => "Modbus entry of the wrong type or size",
+        "The variable does not fit the Modbus table: coils and discrete inputs take BOOLs (or a bit address such as `%IX0.0`), registers take one elementary value of 8 to 64 bits (or a word address such as `%IW0`); a count that differs from what the variables hold, a block reaching past the end of its area, or a status variable that is not BOOL (connected) or an integer (errors, last_error).";
+    E343 => "overlapping Modbus addresses",
+        "Two explicit `[[modbus.server.map]]` entries give the same Modbus address of one table: each address of a table maps to one place.";
+    E344 => "read-only variable mapped for writing",
+        "A CONSTANT or compiler-generated variable (an SFC step flag or time) is mapped where a Modbus client or device would write it: as a coil or holding register of the server, or as the target of a client's read block or status variable. Map it as a discrete input or input register instead.";
 
     // ---- warnings ----
     W001 => "unused variable",

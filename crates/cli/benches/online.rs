@@ -118,6 +118,7 @@ fn main() {
                     }),
                     sim: Some(Rc::new(RefCell::new(sim))),
                     observer: None,
+                    exchange: None,
                 })
             }),
         )

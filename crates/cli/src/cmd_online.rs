@@ -39,6 +39,7 @@ use std::sync::{Arc, Mutex};
 /// `--trace`.
 pub fn wanted(args: &RunArgs) -> bool {
     args.listen.is_some()
+        || args.modbus_server.is_some()
         || (args.cycles.is_none()
             && args.duration.is_none()
             && args.scenario.is_none()
@@ -73,6 +74,8 @@ struct LoadedRun {
     cycle_ns: i64,
     safe: SafeState,
     project: Option<automat_project::Project>,
+    /// `[modbus]` of the project, checked against the program.
+    modbus: automat_fieldbus::config::Config,
 }
 
 fn load(args: &RunArgs) -> Result<LoadedRun, Outcome> {
@@ -88,6 +91,7 @@ fn load(args: &RunArgs) -> Result<LoadedRun, Outcome> {
         program,
         cycle_ns: args.cycle_time.unwrap_or(10_000_000),
         project: None,
+        modbus: Default::default(),
     })
 }
 
@@ -139,11 +143,15 @@ fn load_project(args: &RunArgs, toml: &Path) -> Result<LoadedRun, Outcome> {
         _ => automat_project::safe::build(&project, &program, None),
     }
     .map_err(|d| fail(&d))?;
+    let modbus =
+        automat_fieldbus::config::load(&map.get(project.file).text, project.file, &program)
+            .map_err(|d| fail(&d))?;
     Ok(LoadedRun {
         safe,
         cycle_ns: args.cycle_time.unwrap_or(project.cycle_time_ns),
         program,
         project: Some(project),
+        modbus,
     })
 }
 
@@ -176,6 +184,11 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
                 "{name} does not apply with --listen: the run goes on until Ctrl-C (with --virtual-clock, scans run on `step` commands)"
             )));
         }
+        if given && args.modbus_server.is_some() {
+            return Err(bad(format!(
+                "{name} does not apply with --modbus-server: the run goes on in real time until Ctrl-C"
+            )));
+        }
     }
     if !(args.speed.is_finite() && args.speed > 0.0) {
         return Err(bad("--speed must be a number greater than 0"));
@@ -186,7 +199,31 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         }
         None => None,
     };
-    let loaded = load(args)?;
+    let modbus_addr = match &args.modbus_server {
+        Some(a) => Some(
+            automat_fieldbus::server::parse_addr(a)
+                .map_err(|e| bad(format!("--modbus-server: {e}")))?,
+        ),
+        None => None,
+    };
+    let mut loaded = load(args)?;
+    if args.virtual_clock && (modbus_addr.is_some() || loaded.modbus.server.is_some()) {
+        return Err(bad(
+            "a Modbus server needs the real-time clock: --virtual-clock does not apply",
+        ));
+    }
+    let modbus_server = match (modbus_addr, loaded.modbus.server.take()) {
+        (Some(addr), Some(mut s)) => {
+            s.options.addr = addr;
+            Some(s)
+        }
+        (Some(addr), None) => Some(automat_fieldbus::config::ServerConfig {
+            options: automat_fieldbus::server::Options::new(addr),
+            map: automat_fieldbus::map::Map::default_of(&loaded.program),
+        }),
+        (None, s) => s,
+    };
+    let modbus_clients = std::mem::take(&mut loaded.modbus.clients);
     if loaded.cycle_ns <= 0 {
         return Err(bad("--cycle-time must be longer than 0"));
     }
@@ -278,6 +315,13 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             }
             None => None,
         };
+        let exchange: Option<Box<dyn automat_session::Exchange>> = if modbus_clients.is_empty() {
+            None
+        } else {
+            Some(Box::new(automat_fieldbus::client::Clients::start(
+                modbus_clients.clone(),
+            )?))
+        };
         let observer: Option<Box<dyn ScanObserver>> = view.then(|| {
             let live = Live::new(&for_build, view_commands, view_console, view_stop, speed);
             Box::new(View {
@@ -289,6 +333,7 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             exec: Box::new(engine),
             sim,
             observer,
+            exchange,
         })
     });
     let session = Arc::new(Session::start(Arc::clone(&program), config, build).map_err(bad)?);
@@ -314,6 +359,29 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             server.scheme, server.addr, server.addr
         );
     }
+    let modbus = match modbus_server {
+        None => None,
+        Some(cfg) => {
+            let dev = automat_fieldbus::server::SessionDevice {
+                session: Arc::clone(&session),
+                map: cfg.map,
+            };
+            match automat_fieldbus::server::start(Arc::new(dev), cfg.options) {
+                Ok(s) => {
+                    eprintln!(
+                        "automat: Modbus TCP server on {} (docs/modbus.md); Ctrl-C stops",
+                        s.addr
+                    );
+                    Some(s)
+                }
+                Err(e) => {
+                    drop(server);
+                    let _ = session.shutdown();
+                    return Err(bad(e));
+                }
+            }
+        }
+    };
     if view {
         crate::live::console(
             Arc::clone(&session),
@@ -325,6 +393,7 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
     }
     let mut end = session.join().map_err(bad)?;
     drop(server);
+    drop(modbus);
     let mut outcome = Outcome::Ok;
     if let Some(saves) = end.retain.take() {
         let saved = retain_run::report(

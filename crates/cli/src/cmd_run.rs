@@ -138,6 +138,11 @@ pub struct RunArgs {
     /// stopped and runs by `step` commands.
     #[arg(long, value_name = "[ADDR:]PORT")]
     pub(crate) listen: Option<String>,
+    /// Serve the PLC as a Modbus TCP server (slave) on 127.0.0.1:PORT or
+    /// ADDR:PORT with the OpenPLC-compatible map (docs/modbus.md); wins
+    /// over `[modbus.server] listen` of automat.toml. Runs until Ctrl-C.
+    #[arg(long, value_name = "[ADDR:]PORT")]
+    pub(crate) modbus_server: Option<String>,
     /// --listen: the token (engineer rights) is the content of FILE; a
     /// missing FILE is created with a random token, readable only by you.
     #[arg(long, value_name = "FILE", requires = "listen")]

@@ -29,6 +29,7 @@ mod cmd_explain;
 mod cmd_export;
 mod cmd_online;
 mod cmd_passwd;
+mod cmd_plant;
 mod cmd_run;
 mod cmd_test;
 mod draw;
@@ -67,6 +68,7 @@ enum Command {
     Plot(plot::PlotArgs),
     Draw(draw::DrawArgs),
     Passwd(cmd_passwd::PasswdArgs),
+    Plant(cmd_plant::PlantArgs),
 }
 
 /// Exit status of a command.
@@ -96,6 +98,7 @@ fn main() -> ExitCode {
         Command::Plot(args) => plot::run(&args),
         Command::Draw(args) => draw::run(&args),
         Command::Passwd(args) => cmd_passwd::run(&args),
+        Command::Plant(args) => cmd_plant::run(&args),
     };
     ExitCode::from(match outcome {
         Outcome::Ok => 0,

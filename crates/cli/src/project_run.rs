@@ -158,6 +158,10 @@ fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
         }
     };
     automat_project::tasks::apply(&project.tasks, &mut program).map_err(|d| fail(&map, &d))?;
+    // `[modbus]` is checked in every run (its errors are the project's),
+    // though a virtual-clock run opens no socket and exchanges nothing.
+    automat_fieldbus::config::load(&map.get(project.file).text, project.file, &program)
+        .map_err(|d| fail(&map, &d))?;
     crate::engines::default_watchdog(&mut program, args.watchdog);
     // Without [plant] the program runs against no plant.
     let plant = project.new_plant().map_err(|d| fail(&map, &d))?;

@@ -35,6 +35,11 @@ fn project_file_errors_point_into_automat_toml() {
         ("e305_e306_unbound", "e305_e306_unbound/automat.toml:5:9: warning[E306]: sensor `l4` of the crane model is bound to nothing"),
         ("e307_bad_param", "e307_bad_param/automat.toml:9:1: error[E307]: plant parameter `depth` refused: crane: unknown parameter `depth`"),
         ("e308_no_sources", "e308_no_sources/automat.toml:3:12: error[E308]: source `nothing.st`: no such file or folder"),
+        ("e340_bad_modbus", "e340_bad_modbus/automat.toml:9:10: error[E340]: listen: `nowhere` is not PORT or ADDR:PORT"),
+        ("e341_modbus_unknown", "e341_modbus_unknown/automat.toml:12:7: error[E341]: unknown variable `Ctrl.nothing`"),
+        ("e342_modbus_type", "e342_modbus_type/automat.toml:12:7: error[E342]: `Ctrl.l1` is BOOL: registers take one elementary value of 8 to 64 bits"),
+        ("e343_modbus_overlap", "e343_modbus_overlap/automat.toml:19:11: error[E343]: discrete_inputs address 100 is mapped twice: to `Ctrl.l1` and to `Ctrl.l2`"),
+        ("e344_modbus_constant", "e344_modbus_constant/automat.toml:12:7: error[E344]: `Ctrl.DWELL_TIME` is a CONSTANT: clients would write it as holding_registers"),
     ];
     for (dir, want) in cases {
         let (code, _, err) = automat(&["run", dir, "--cycles", "1"]);

@@ -52,6 +52,11 @@ struct RawFile {
     #[serde(default)]
     tasks: BTreeMap<Spanned<String>, RawTask>,
     runtime: Option<RawRuntime>,
+    /// `[modbus]`: read and checked by `automat-fieldbus` from the same
+    /// text (it needs the compiled program).
+    #[serde(default)]
+    #[allow(dead_code)]
+    modbus: Option<serde::de::IgnoredAny>,
 }
 
 #[derive(Deserialize)]

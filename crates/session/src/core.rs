@@ -97,6 +97,8 @@ struct Core {
     clock: ClockHandle,
     outside_stop: Arc<AtomicBool>,
     extra: Option<Box<dyn ScanObserver>>,
+    /// Fieldbus I/O, exchanged between scans (see [`crate::Exchange`]).
+    exchange: Option<Box<dyn crate::Exchange>>,
     state: State,
     /// Scans left of a `step`, and who waits for them.
     steps: Option<(u64, Reply)>,
@@ -182,6 +184,12 @@ impl Core {
                 stored.apply(image);
                 if let Some((_, written)) = &mut self.held {
                     written.push(stored);
+                }
+                Ok(())
+            }
+            Command::WriteMany(all) => {
+                for stored in &all {
+                    stored.apply(image);
                 }
                 Ok(())
             }
@@ -359,6 +367,14 @@ impl Core {
                     }
                 }
             }
+            if let Some(x) = &mut self.exchange {
+                if self.state != State::Running {
+                    // Stopped or in fault: the devices get the safe state
+                    // (and what a client wrote to the outputs since).
+                    x.outputs(image);
+                }
+                x.inputs(image);
+            }
             self.forces.borrow().apply(image);
             if !matches!(self.state, State::Fault { .. }) {
                 // Writes and forces between scans are consistent states
@@ -438,6 +454,9 @@ impl ScanObserver for Observer<'_> {
         // The end of a completed scan: the consistent state RETAIN keeps.
         c.keeper.after_scan(c.plc_time_ns, image)?;
         c.retained_from(image);
+        if let Some(x) = &mut c.exchange {
+            x.outputs(image);
+        }
         match &mut c.extra {
             Some(o) => o.after_scan(c.plc_time_ns, image),
             None => Ok(()),
@@ -510,6 +529,7 @@ pub(crate) fn main(
         exec,
         sim,
         observer: extra,
+        exchange,
     } = parts;
     let forces = Rc::new(RefCell::new(ForceTable::default()));
     let offset = Rc::new(Cell::new(0i64));
@@ -572,6 +592,7 @@ pub(crate) fn main(
         clock: clock.clone(),
         outside_stop: Arc::clone(&config.stop),
         extra,
+        exchange,
         state: if config.running {
             State::Running
         } else {
@@ -720,6 +741,10 @@ fn finish(mut core: Core, exec: &impl Executor, error: Option<String>, has_retai
     };
     core.publish(exec.image());
     core.answer();
+    if let Some(mut x) = core.exchange.take() {
+        // The final image (in the safe state unless a limit ended the run).
+        x.outputs(exec.image());
+    }
     // Anyone still waiting learns that the session ended.
     while let Ok(req) = core.rx.try_recv() {
         let _ = req

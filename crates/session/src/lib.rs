@@ -150,6 +150,23 @@ pub struct Parts {
     pub sim: Option<Rc<RefCell<Sim>>>,
     /// Sees every scan too (a trace, the live view).
     pub observer: Option<Box<dyn ScanObserver>>,
+    /// Fieldbus I/O (Modbus client devices) exchanged between scans.
+    pub exchange: Option<Box<dyn Exchange>>,
+}
+
+/// Process I/O exchanged with the outside on the scan thread, between
+/// scans, by copying only: the protocol runs on threads of its own, so a
+/// slow or dead device never stalls the scan (`automat-fieldbus`).
+///
+/// `inputs` is called between scans, before the forces are stored again
+/// and the snapshot is published: the values the next scan reads (a
+/// forced input still beats them). `outputs` is called after each
+/// completed scan with its end image (forced outputs included), after a
+/// STOP or a fault with the safe state, on every wait while stopped, and
+/// once more at the end of the session with the final (safe) image.
+pub trait Exchange {
+    fn inputs(&mut self, image: &mut [u8]);
+    fn outputs(&mut self, image: &[u8]);
 }
 
 pub type Build = Box<dyn FnOnce() -> Result<Parts, String> + Send>;
@@ -234,10 +251,16 @@ pub type Sink = Box<dyn FnMut(&Arc<Snapshot>) -> bool + Send>;
 
 pub(crate) enum Command {
     Write(value::Stored),
+    /// Several places in one step between two scans (a Modbus write of
+    /// several registers is one consistent change).
+    WriteMany(Vec<value::Stored>),
     Force(force::Force),
     Unforce(Option<value::Stored>),
     Control(Control),
-    Subscribe { period_ns: i64, sink: Sink },
+    Subscribe {
+        period_ns: i64,
+        sink: Sink,
+    },
     Quit,
 }
 
@@ -386,6 +409,17 @@ impl Session {
     pub fn write(&self, path: &str, text: &str) -> Result<(), Error> {
         let stored = self.target(path, text)?;
         self.send(Command::Write(stored))
+    }
+
+    /// Stores already encoded values (places the caller resolved and
+    /// checked for writability) together, between two scans, as
+    /// [`Session::write`] does: forces hold, the answer comes with the
+    /// snapshot that shows the change.
+    pub fn write_stored(&self, stored: Vec<value::Stored>) -> Result<(), Error> {
+        if stored.is_empty() {
+            return Ok(());
+        }
+        self.send(Command::WriteMany(stored))
     }
 
     /// Forces `path` to `text` until released.

@@ -60,6 +60,7 @@ pub fn source_with(text: &str, config: Config) -> Session {
                 exec: Box::new(Engine::new(p)),
                 sim: None,
                 observer: None,
+                exchange: None,
             })
         }),
     )
@@ -104,6 +105,7 @@ pub fn project(name: &str) -> Session {
                 exec: Box::new(Engine::new(p)),
                 sim: Some(Rc::new(RefCell::new(sim))),
                 observer: None,
+                exchange: None,
             })
         }),
     )
