@@ -184,7 +184,9 @@ impl Gen<'_, '_> {
                 }
                 // `__SELF`: the current function block instance (the
                 // object-orientation desugaring passes it to methods).
-                if id.sym == model.syms.self_ && pou.kind == automat_syntax::ast::PouKind::FunctionBlock {
+                if id.sym == model.syms.self_
+                    && pou.kind == automat_syntax::ast::PouKind::FunctionBlock
+                {
                     if let Some(ty) = pou.instance_type {
                         return Ok(Lv {
                             addr: Addr::this(0),

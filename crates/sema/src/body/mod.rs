@@ -241,7 +241,9 @@ impl<'m> Checker<'m> {
             return None;
         };
         let p = self.model.pou(id)?;
-        if p.kind != automat_syntax::ast::PouKind::FunctionBlock || p.vars.index(self.model.syms.self_).is_some() {
+        if p.kind != automat_syntax::ast::PouKind::FunctionBlock
+            || p.vars.index(self.model.syms.self_).is_some()
+        {
             return None;
         }
         p.instance_type
