@@ -28,9 +28,9 @@
 
 use crate::ast::oop::{Class, ClassKind, Interface, Method, Visibility};
 use crate::ast::{
-    Arg, ArgDir, Body, CaseArm, CaseLabel, Expr, ExprKind, Ident, Item, Lang, LitKind, Literal,
-    Pou, PouKind, SourceUnit, Stmt, StmtKind, TypeBlock, TypeDecl, TypeSpec, VarBlock, VarDecl,
-    VarKind,
+    Arg, ArgDir, BinaryOp, Body, CaseArm, CaseLabel, Expr, ExprKind, Ident, Item, Lang, LitKind,
+    Literal, Pou, PouKind, SourceUnit, Stmt, StmtKind, TypeBlock, TypeDecl, TypeSpec, VarBlock,
+    VarDecl, VarKind,
 };
 use automat_base::{Code, Diagnostic, Interner, Span, Symbol};
 use std::collections::{HashMap, HashSet};
@@ -1019,6 +1019,18 @@ impl<'a> Oop<'a> {
             },
             span,
         };
+        // The value without an instance.
+        let nname = format!("__IN_{}", self.name(i));
+        let nsym = self.sym(&nname);
+        out.push(Item::Pou(Pou {
+            kind: PouKind::Function,
+            name: id(nsym),
+            return_type: Some(TypeSpec::Named(id(ssym))),
+            var_blocks: Vec::new(),
+            body: Body::St(Vec::new()),
+            lang: Lang::St,
+            span,
+        }));
         // Conversions from each class.
         let rsym = self.sym("__r");
         for (c, f) in &fields {
@@ -1303,6 +1315,24 @@ impl<'a> Oop<'a> {
                 }
                 let tt = self.type_of(target, cx);
                 self.expr(target, cx);
+                if let (T::Itf(i), true) = (&tt, self.is_nothing(value)) {
+                    // `itf := NULL;`: no instance (every reference NULL).
+                    let f = format!("__IN_{}", self.name(*i));
+                    let f = self.sym(&f);
+                    let vs = value.span;
+                    *value = Expr {
+                        kind: ExprKind::Call {
+                            callee: Box::new(Expr {
+                                kind: ExprKind::Name(Ident { sym: f, span: vs }),
+                                span: vs,
+                            }),
+                            args: Vec::new(),
+                        },
+                        span: vs,
+                    };
+                    self.depth -= 1;
+                    return;
+                }
                 self.expr(value, cx);
                 if let T::Itf(i) = tt {
                     self.to_itf(value, i, cx);
@@ -1629,7 +1659,21 @@ impl<'a> Oop<'a> {
                 }
             }
             ExprKind::Unary { operand, .. } => self.expr(operand, cx),
-            ExprKind::Binary { lhs, rhs, .. } => {
+            ExprKind::Binary { op, lhs, rhs } => {
+                // `itf = NULL`, `itf <> 0`: whether an instance is assigned.
+                if matches!(op, BinaryOp::Eq | BinaryOp::Ne) {
+                    let (lt, rt) = (self.type_of(lhs, cx), self.type_of(rhs, cx));
+                    if matches!(lt, T::Itf(_)) && self.is_nothing(rhs) {
+                        self.expr(lhs, cx);
+                        self.itf_id(lhs, rhs);
+                        return;
+                    }
+                    if matches!(rt, T::Itf(_)) && self.is_nothing(lhs) {
+                        self.expr(rhs, cx);
+                        self.itf_id(rhs, lhs);
+                        return;
+                    }
+                }
                 self.expr(lhs, cx);
                 self.expr(rhs, cx);
             }
@@ -1637,6 +1681,47 @@ impl<'a> Oop<'a> {
             ExprKind::Call { .. } => self.call(e, cx),
             _ => {}
         }
+    }
+
+    /// `NULL` or the literal 0 (CODESYS writes `itf <> 0`).
+    fn is_nothing(&self, e: &Expr) -> bool {
+        match &e.kind {
+            ExprKind::Paren(i) => self.is_nothing(i),
+            ExprKind::Literal(l) => matches!(l.kind, LitKind::Int(0)) && l.ty.is_none(),
+            ExprKind::Name(_) => self.is_word(e, "NULL"),
+            _ => false,
+        }
+    }
+
+    /// `itf` becomes `itf.__id`, `nothing` the literal 0.
+    fn itf_id(&mut self, itf: &mut Expr, nothing: &mut Expr) {
+        let t = std::mem::replace(
+            itf,
+            Expr {
+                kind: ExprKind::Error,
+                span: itf.span,
+            },
+        );
+        self.itf_id_expr(t, nothing, itf);
+    }
+
+    fn itf_id_expr(&mut self, t: Expr, nothing: &mut Expr, into: &mut Expr) {
+        let span = t.span;
+        let id = self.sym("__id");
+        *into = Expr {
+            kind: ExprKind::Member {
+                base: Box::new(t),
+                member: Ident { sym: id, span },
+            },
+            span,
+        };
+        *nothing = Expr {
+            kind: ExprKind::Literal(Box::new(Literal {
+                kind: LitKind::Int(0),
+                ty: None,
+            })),
+            span: nothing.span,
+        };
     }
 
     /// Replaces `e` by a call of the GET of property `p` of class `c` on `this`.
