@@ -99,6 +99,12 @@ fn write_type(out: &mut String, types: &TypeTable, interner: &Interner, id: Type
             write_type(out, types, interner, *elem, depth + 1);
         }
         TypeKind::Struct { name, .. } => match name {
+            // An interface's structure (`automat_syntax::desugar_oop`).
+            Some(n) if interner.name(*n).starts_with("__ITF_") => {
+                let full = interner.name(*n);
+                out.push_str("interface ");
+                out.push_str(full.get(6..).unwrap_or(full));
+            }
             Some(n) => out.push_str(interner.name(*n)),
             None => out.push_str("STRUCT"),
         },

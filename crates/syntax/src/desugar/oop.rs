@@ -185,6 +185,8 @@ struct Oop<'a> {
     ids: HashMap<Symbol, u32>,
     /// Classes whose inheritance chain is broken (no code is generated for them).
     broken: HashSet<Symbol>,
+    /// Classes that miss (or mistype) a method of an interface they implement.
+    bad_impl: HashSet<Symbol>,
     /// Copies of base implementations needed by SUPER^.m(): (class, base, method).
     supers: Vec<(Symbol, Symbol, Symbol)>,
     pou_params: HashMap<Symbol, Vec<(Symbol, TypeSpec)>>,
@@ -215,6 +217,7 @@ impl<'a> Oop<'a> {
             diags: Vec::new(),
             ids,
             broken: HashSet::new(),
+            bad_impl: HashSet::new(),
             supers: Vec::new(),
             pou_params: HashMap::new(),
             this,
@@ -336,7 +339,8 @@ impl<'a> Oop<'a> {
         self.order
             .iter()
             .copied()
-            .filter(|c| !self.broken.contains(c) && self.implements(*c, i))
+            .filter(|c| !self.broken.contains(c) && !self.bad_impl.contains(c))
+            .filter(|c| self.implements(*c, i))
             .filter(|c| !self.class(*c).is_some_and(|x| x.is_abstract))
             .collect()
     }
@@ -508,10 +512,12 @@ impl<'a> Oop<'a> {
                         match self.method_of(c, im.name.sym) {
                             None => {
                                 let n = self.name(im.name.sym);
+                                self.bad_impl.insert(c);
                                 self.err(Code::E205, i.span, format!("`{}` does not implement the method `{n}` of interface `{}`", self.name(c), self.name(k)));
                             }
                             Some((_, m)) if !same_type(&m.return_type, &im.return_type) => {
                                 let n = self.name(im.name.sym);
+                                self.bad_impl.insert(c);
                                 self.err(
                                     Code::E205,
                                     m.name.span,
@@ -527,6 +533,7 @@ impl<'a> Oop<'a> {
                     for ip in &it.properties {
                         if self.property_of(c, ip.name.sym).is_none() {
                             let n = self.name(ip.name.sym);
+                            self.bad_impl.insert(c);
                             self.err(
                                 Code::E205,
                                 i.span,
@@ -1308,6 +1315,7 @@ impl<'a> Oop<'a> {
                                 prop.span,
                                 format!("the property `{n}` has no SET"),
                             );
+                            s.kind = StmtKind::Empty;
                         }
                     }
                     self.depth -= 1;
@@ -1446,6 +1454,11 @@ impl<'a> Oop<'a> {
         let span = value.span;
         match self.type_of_rewritten(value, cx) {
             Some(T::Class(c)) => {
+                if self.bad_impl.contains(&c) {
+                    // Reported at the class already.
+                    value.kind = ExprKind::Error;
+                    return;
+                }
                 if !self.implements(c, i) || self.broken.contains(&c) {
                     let (cn, iname) = (self.name(c), self.name(i));
                     self.err(
@@ -1453,6 +1466,7 @@ impl<'a> Oop<'a> {
                         span,
                         format!("`{cn}` does not implement interface `{iname}`"),
                     );
+                    value.kind = ExprKind::Error;
                     return;
                 }
                 let f = format!("__IC_{}__{}", self.name(i), self.name(c));
@@ -1503,6 +1517,7 @@ impl<'a> Oop<'a> {
                     span,
                     format!("a `{jn}` value cannot be assigned to an interface `{iname}` variable"),
                 );
+                value.kind = ExprKind::Error;
             }
             _ => {}
         }
@@ -1558,7 +1573,13 @@ impl<'a> Oop<'a> {
             return;
         }
         self.depth += 1;
+        let before = self.diags.len();
         self.expr_inner(e, cx);
+        // A misuse reported here: the checker sees an error expression
+        // (no second diagnostic for the same mistake).
+        if self.diags.len() > before {
+            e.kind = ExprKind::Error;
+        }
         self.depth -= 1;
     }
 
