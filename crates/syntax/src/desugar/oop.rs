@@ -73,8 +73,8 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
     d.check_interfaces();
     let mut out: Vec<(usize, Item)> = Vec::new();
     // Plain POUs first: their bodies and declarations see classes too.
-    let pou_params = collect_params(units);
-    d.pou_params = pou_params;
+    d.pou_params = collect_params(units);
+    collect_names(units, &mut d.types, &mut d.pou_vars, &mut d.globals);
     for unit in units.iter_mut() {
         for item in &mut unit.items {
             match item {
@@ -149,6 +149,51 @@ fn collect_params(units: &[SourceUnit]) -> HashMap<Symbol, Vec<(Symbol, TypeSpec
     out
 }
 
+fn collect_names(
+    units: &[SourceUnit],
+    types: &mut HashMap<Symbol, TypeSpec>,
+    pou_vars: &mut HashMap<Symbol, HashMap<Symbol, TypeSpec>>,
+    globals: &mut HashMap<Symbol, TypeSpec>,
+) {
+    let add_block = |b: &VarBlock, into: &mut HashMap<Symbol, TypeSpec>| {
+        for decl in &b.decls {
+            for n in &decl.names {
+                into.insert(n.sym, decl.ty.clone());
+            }
+        }
+    };
+    for unit in units {
+        for item in &unit.items {
+            match item {
+                Item::Pou(p) => {
+                    let mut v = HashMap::new();
+                    for b in &p.var_blocks {
+                        add_block(b, &mut v);
+                    }
+                    pou_vars.insert(p.name.sym, v);
+                }
+                Item::Types(t) => {
+                    for d in &t.decls {
+                        types.insert(d.name.sym, d.spec.clone());
+                    }
+                }
+                Item::Globals(b) => add_block(b, globals),
+                Item::Config(c) => {
+                    for b in &c.globals {
+                        add_block(b, globals);
+                    }
+                    for r in &c.resources {
+                        for b in &r.globals {
+                            add_block(b, globals);
+                        }
+                    }
+                }
+                Item::Class(_) | Item::Interface(_) => {}
+            }
+        }
+    }
+}
+
 /// What an expression designates, as far as methods are concerned.
 #[derive(Clone, Debug)]
 enum T {
@@ -157,6 +202,8 @@ enum T {
     Struct(Vec<VarDecl>),
     Array(TypeSpec),
     Ref(TypeSpec),
+    /// A plain function block or program: its variables.
+    Pou(Symbol),
     Other,
 }
 
@@ -190,6 +237,10 @@ struct Oop<'a> {
     /// Copies of base implementations needed by SUPER^.m(): (class, base, method).
     supers: Vec<(Symbol, Symbol, Symbol)>,
     pou_params: HashMap<Symbol, Vec<(Symbol, TypeSpec)>>,
+    /// TYPE declarations, every variable of every plain POU, the globals (as written).
+    types: HashMap<Symbol, TypeSpec>,
+    pou_vars: HashMap<Symbol, HashMap<Symbol, TypeSpec>>,
+    globals: HashMap<Symbol, TypeSpec>,
     this: Symbol,
     self_: Symbol,
     depth: u32,
@@ -220,6 +271,9 @@ impl<'a> Oop<'a> {
             bad_impl: HashSet::new(),
             supers: Vec::new(),
             pou_params: HashMap::new(),
+            types: HashMap::new(),
+            pou_vars: HashMap::new(),
+            globals: HashMap::new(),
             this,
             self_,
             depth: 0,
@@ -593,7 +647,23 @@ impl<'a> Oop<'a> {
                     T::Class(id.sym)
                 } else if self.itfs.contains_key(&id.sym) {
                     T::Itf(id.sym)
+                } else if self.pou_vars.contains_key(&id.sym) {
+                    T::Pou(id.sym)
                 } else {
+                    // A derived type: its definition (aliases chain at most a few levels).
+                    let mut t = self.types.get(&id.sym);
+                    for _ in 0..8 {
+                        match t {
+                            Some(TypeSpec::Named(n))
+                                if !self.classes.contains_key(&n.sym)
+                                    && !self.itfs.contains_key(&n.sym) =>
+                            {
+                                t = self.types.get(&n.sym);
+                            }
+                            Some(spec) => return self.spec_t(&spec.clone()),
+                            None => return T::Other,
+                        }
+                    }
                     T::Other
                 }
             }
@@ -629,7 +699,9 @@ impl<'a> Oop<'a> {
                         return self.spec_t(&t);
                     }
                 }
-                T::Other
+                self.globals
+                    .get(&id.sym)
+                    .map_or(T::Other, |t| self.spec_t(t))
             }
             ExprKind::Deref(b) => {
                 if self.is_word(b, "THIS") && cx.class.is_some() {
@@ -644,6 +716,11 @@ impl<'a> Oop<'a> {
                 T::Class(c) => self
                     .class_var(c, member.sym)
                     .map_or(T::Other, |t| self.spec_t(&t)),
+                T::Pou(p) => self
+                    .pou_vars
+                    .get(&p)
+                    .and_then(|v| v.get(&member.sym))
+                    .map_or(T::Other, |t| self.spec_t(t)),
                 T::Struct(ms) => ms
                     .iter()
                     .find(|d| d.names.iter().any(|n| n.sym == member.sym))
