@@ -299,6 +299,8 @@ codes! {
         "A method marked OVERRIDE overrides nothing: no base class declares a method of that name.";
     E212 => "interface assignment",
         "An interface variable takes an instance of a class that implements the interface (directly, through a base, or through an interface that extends it), or another variable of the same interface.";
+    E213 => "inheritance too large",
+        "A class has more than 64 levels of bases, or the project's classes need more than 50,000 method bodies (every class compiles its own copy of each inherited method). Flatten the hierarchy.";
 
     // ---- projects, plants and scenarios (automat-project, automat-scenario) ----
     E300 => "invalid project file",

@@ -71,6 +71,18 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
     let mut d = Oop::new(interner, &classes, &itfs, &order);
     d.check_classes();
     d.check_interfaces();
+    // Each class gets its own copy of every inherited method: bound the total.
+    let copies: usize = order.iter().map(|c| d.all_methods(*c).len()).sum();
+    if copies > MAX_METHOD_COPIES {
+        if let Some((_, c)) = order.first().and_then(|s| classes.get(s)) {
+            d.err(
+                Code::E213,
+                c.name.span,
+                format!("the classes of this project need {copies} method bodies with their inherited methods, more than {MAX_METHOD_COPIES}"),
+            );
+        }
+        d.broken.extend(order.iter().copied());
+    }
     let mut out: Vec<(usize, Item)> = Vec::new();
     // Plain POUs first: their bodies and declarations see classes too.
     d.pou_params = collect_params(units);
@@ -124,6 +136,11 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
     }
     diags
 }
+
+/// Bases of a class, at most.
+const MAX_INHERITANCE: usize = 64;
+/// Compiled method bodies (own and inherited, per class), at most.
+const MAX_METHOD_COPIES: usize = 50_000;
 
 /// Input and in-out parameter types of every plain POU (for interface
 /// conversions of call arguments).
@@ -306,7 +323,11 @@ impl<'a> Oop<'a> {
         let mut out = vec![s];
         let mut cur = s;
         while let Some(b) = self.class(cur).and_then(|c| c.extends) {
-            if out.contains(&b.sym) || self.class(b.sym).is_none() {
+            // Past the limit the class is refused (E213): stop looking.
+            if out.len() > MAX_INHERITANCE + 1
+                || out.contains(&b.sym)
+                || self.class(b.sym).is_none()
+            {
                 break;
             }
             out.push(b.sym);
@@ -408,6 +429,9 @@ impl<'a> Oop<'a> {
             let mut seen = vec![c];
             let mut cur = cl;
             while let Some(b) = cur.extends {
+                if seen.len() > MAX_INHERITANCE {
+                    break;
+                }
                 match self.class(b.sym) {
                     None => {
                         let n = self.name(b.sym);
@@ -454,6 +478,15 @@ impl<'a> Oop<'a> {
                         cur = base;
                     }
                 }
+            }
+            if !self.broken.contains(&c) && self.chain(c).len() > MAX_INHERITANCE + 1 {
+                let n = self.name(c);
+                self.err(
+                    Code::E213,
+                    cl.name.span,
+                    format!("`{n}` has more than {MAX_INHERITANCE} levels of bases"),
+                );
+                self.broken.insert(c);
             }
             // Methods and properties of the class itself.
             let mut names: HashSet<Symbol> = HashSet::new();
