@@ -298,7 +298,7 @@ codes! {
     E211 => "OVERRIDE without a base method",
         "A method marked OVERRIDE overrides nothing: no base class declares a method of that name.";
     E212 => "interface assignment",
-        "An interface variable takes an instance of a class that implements the interface (directly, through a base, or through an interface that extends it), or another variable of the same interface.";
+        "An interface variable takes an instance of a class that implements the interface (directly, through a base, or through an interface that extends it), or another interface variable of the same interface or of one that extends it.";
     E213 => "inheritance too large",
         "A class has more than 64 levels of bases, or the project's classes need more than 50,000 method bodies (every class compiles its own copy of each inherited method). Flatten the hierarchy.";
 

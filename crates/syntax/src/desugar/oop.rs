@@ -1186,6 +1186,56 @@ impl<'a> Oop<'a> {
                 span,
             }));
         }
+        // Conversions from each interface that extends this one: every class
+        // implementing it implements this one too.
+        let mut subs: Vec<Symbol> = self
+            .itfs
+            .keys()
+            .copied()
+            .filter(|j| *j != i && self.itf_chain(*j).contains(&i))
+            .collect();
+        subs.sort_by_key(|j| self.itf(*j).map(|x| x.span.start));
+        for j in subs {
+            let cname = format!("__IC_{}__{}", self.name(i), self.name(j));
+            let csym = self.sym(&cname);
+            let jname = format!("__ITF_{}", self.name(j));
+            let jsym = self.sym(&jname);
+            let osym = self.sym("__o");
+            let mut body = vec![assign(
+                member_e(name_e(csym), id_sym),
+                member_e(name_e(osym), id_sym),
+            )];
+            for c in self.implementors(j) {
+                if let Some((_, f)) = fields.iter().find(|(k, _)| *k == c) {
+                    body.push(assign(
+                        member_e(name_e(csym), *f),
+                        member_e(name_e(osym), *f),
+                    ));
+                }
+            }
+            out.push(Item::Pou(Pou {
+                kind: PouKind::Function,
+                name: id(csym),
+                return_type: Some(TypeSpec::Named(id(ssym))),
+                var_blocks: vec![VarBlock {
+                    kind: VarKind::Input,
+                    constant: false,
+                    retain: Default::default(),
+                    decls: vec![VarDecl {
+                        names: vec![id(osym)],
+                        location: None,
+                        ty: TypeSpec::Named(id(jsym)),
+                        edge: None,
+                        init: None,
+                        span,
+                    }],
+                    span,
+                }],
+                body: Body::St(body),
+                lang: Lang::St,
+                span,
+            }));
+        }
         // Dispatchers.
         let osym = self.sym("__o");
         let mut methods: Vec<&Method> = Vec::new();
@@ -1614,6 +1664,33 @@ impl<'a> Oop<'a> {
                             name: None,
                             dir: ArgDir::In,
                             value: Some(r),
+                            span,
+                        }],
+                    },
+                    span,
+                };
+            }
+            Some(T::Itf(j)) if j != i && self.itf_chain(j).contains(&i) => {
+                // An interface that extends `i`: the same instance, seen as `i`.
+                let f = format!("__IC_{}__{}", self.name(i), self.name(j));
+                let f = self.sym(&f);
+                let inner = std::mem::replace(
+                    value,
+                    Expr {
+                        kind: ExprKind::Error,
+                        span,
+                    },
+                );
+                *value = Expr {
+                    kind: ExprKind::Call {
+                        callee: Box::new(Expr {
+                            kind: ExprKind::Name(Ident { sym: f, span }),
+                            span,
+                        }),
+                        args: vec![Arg {
+                            name: None,
+                            dir: ArgDir::In,
+                            value: Some(inner),
                             span,
                         }],
                     },
