@@ -24,7 +24,7 @@
 //!   assignment of an instance to an interface variable (or as an input)
 //!   calls `__IC_I__<class>(REF(instance))`.
 //!
-//! Every misuse is reported here, at the source's names (E200–E212).
+//! Every misuse is reported here, at the source's names (E200–E213).
 
 use crate::ast::oop::{Class, ClassKind, Interface, Method, Visibility};
 use crate::ast::{
@@ -529,19 +529,18 @@ impl<'a> Oop<'a> {
                     .filter(|_| !self.broken.contains(&c));
                 let inherited = base.and_then(|b| self.method_of(b, m.name.sym));
                 match inherited {
-                    Some((k, bm)) => {
-                        if bm.is_final {
-                            let n = self.name(m.name.sym);
-                            self.err(
-                                Code::E201,
-                                m.name.span,
-                                format!(
-                                    "`{n}` cannot be overridden: it is FINAL in `{}`",
-                                    self.name(k)
-                                ),
-                            );
-                        }
+                    Some((k, bm)) if bm.is_final => {
+                        let n = self.name(m.name.sym);
+                        self.err(
+                            Code::E201,
+                            m.name.span,
+                            format!(
+                                "`{n}` cannot be overridden: it is FINAL in `{}`",
+                                self.name(k)
+                            ),
+                        );
                     }
+                    Some(_) => {}
                     None if m.is_override => {
                         let n = self.name(m.name.sym);
                         self.err(
@@ -1503,7 +1502,7 @@ impl<'a> Oop<'a> {
                 }
                 self.expr(value, cx);
                 if let T::Itf(i) = tt {
-                    self.to_itf(value, i, cx);
+                    self.wrap_itf(value, i, cx);
                 }
             }
             StmtKind::Expr(e) => self.expr(e, cx),
@@ -1610,7 +1609,7 @@ impl<'a> Oop<'a> {
     }
 
     /// Wraps `value` (of a class or another interface) into interface `i`.
-    fn to_itf(&mut self, value: &mut Expr, i: Symbol, cx: &Ctx) {
+    fn wrap_itf(&mut self, value: &mut Expr, i: Symbol, cx: &Ctx) {
         let span = value.span;
         match self.type_of_rewritten(value, cx) {
             Some(T::Class(c)) => {
@@ -2008,17 +2007,15 @@ impl<'a> Oop<'a> {
                 if let ExprKind::Name(id) = &callee.kind {
                     if let Some(ps) = self.pou_params.get(&id.sym).cloned() {
                         self.convert_args(args, &ps, cx);
-                    } else if let Some(t) = cx
+                    } else if let Some(TypeSpec::Named(fb)) = cx
                         .locals
                         .get(&id.sym)
                         .cloned()
                         .or_else(|| cx.class.and_then(|c| self.class_var(c, id.sym)))
                     {
                         // An instance call of an FB-typed variable.
-                        if let TypeSpec::Named(fb) = t {
-                            if let Some(ps) = self.pou_params.get(&fb.sym).cloned() {
-                                self.convert_args(args, &ps, cx);
-                            }
+                        if let Some(ps) = self.pou_params.get(&fb.sym).cloned() {
+                            self.convert_args(args, &ps, cx);
                         }
                     }
                     if cx.in_method
@@ -2184,7 +2181,7 @@ impl<'a> Oop<'a> {
             };
             if let (Some(TypeSpec::Named(t)), Some(v), ArgDir::In) = (ty, &mut a.value, a.dir) {
                 if self.itfs.contains_key(&t.sym) {
-                    self.to_itf(v, t.sym, cx);
+                    self.wrap_itf(v, t.sym, cx);
                 }
             }
         }

@@ -109,11 +109,8 @@ impl Parser<'_> {
 
     fn ident_list(&mut self, what: &str) -> Vec<Ident> {
         let mut out = Vec::new();
-        loop {
-            match self.expect_ident(what) {
-                Some(i) => out.push(i),
-                None => break,
-            }
+        while let Some(i) = self.expect_ident(what) {
+            out.push(i);
             if !self.eat(Tok::Comma) {
                 break;
             }
