@@ -39,6 +39,7 @@ use std::collections::{HashMap, HashSet};
 /// into plain items, appended to the unit that declared them; the classes
 /// and interfaces stay, marked `desugared` (later stages ignore them).
 pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Diagnostic> {
+    promote_bases(units);
     let mut classes: HashMap<Symbol, (usize, Class)> = HashMap::new();
     let mut itfs: HashMap<Symbol, (usize, Interface)> = HashMap::new();
     let mut order: Vec<Symbol> = Vec::new();
@@ -73,7 +74,21 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
     d.check_interfaces();
     // Each class gets its own copy of every inherited method: bound the total.
     let copies: usize = order.iter().map(|c| d.all_methods(*c).len()).sum();
-    if copies > MAX_METHOD_COPIES {
+    let bytes: u64 = order
+        .iter()
+        .flat_map(|c| d.all_methods(*c))
+        .map(|(_, _, m)| u64::from(m.span.end.saturating_sub(m.span.start)))
+        .sum();
+    if bytes > MAX_COPIED_BYTES {
+        if let Some((_, c)) = order.first().and_then(|s| classes.get(s)) {
+            d.err(
+                Code::E213,
+                c.name.span,
+                format!("the classes of this project would copy {bytes} bytes of inherited method text, more than {MAX_COPIED_BYTES}"),
+            );
+        }
+        d.broken.extend(order.iter().copied());
+    } else if copies > MAX_METHOD_COPIES {
         if let Some((_, c)) = order.first().and_then(|s| classes.get(s)) {
             d.err(
                 Code::E213,
@@ -141,6 +156,51 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
 const MAX_INHERITANCE: usize = 64;
 /// Compiled method bodies (own and inherited, per class), at most.
 const MAX_METHOD_COPIES: usize = 50_000;
+/// Source text of those bodies, at most.
+const MAX_COPIED_BYTES: u64 = 64 << 20;
+/// Statements copied into bodies by `SUPER^();`, at most.
+const MAX_INLINED: usize = 100_000;
+
+/// A plain FUNCTION_BLOCK named after `EXTENDS` becomes a class (with no
+/// methods), so that it can be a base.
+fn promote_bases(units: &mut [SourceUnit]) {
+    let mut bases = HashSet::new();
+    for unit in units.iter() {
+        for item in &unit.items {
+            if let Item::Class(c) = item {
+                if let (false, Some(b)) = (c.desugared, c.extends) {
+                    bases.insert(b.sym);
+                }
+            }
+        }
+    }
+    if bases.is_empty() {
+        return;
+    }
+    for unit in units.iter_mut() {
+        for item in &mut unit.items {
+            let Item::Pou(p) = item else { continue };
+            if p.kind != PouKind::FunctionBlock || !bases.contains(&p.name.sym) {
+                continue;
+            }
+            let Body::St(body) = &p.body;
+            *item = Item::Class(Box::new(Class {
+                kind: ClassKind::FunctionBlock,
+                name: p.name,
+                is_abstract: false,
+                is_final: false,
+                extends: None,
+                implements: Vec::new(),
+                var_blocks: std::mem::take(&mut p.var_blocks),
+                methods: Vec::new(),
+                properties: Vec::new(),
+                body: body.clone(),
+                span: p.span,
+                desugared: false,
+            }));
+        }
+    }
+}
 
 /// Input and in-out parameter types of every plain POU (for interface
 /// conversions of call arguments).
@@ -251,6 +311,8 @@ struct Oop<'a> {
     broken: HashSet<Symbol>,
     /// Classes that miss (or mistype) a method of an interface they implement.
     bad_impl: HashSet<Symbol>,
+    /// Statements copied by `SUPER^();` so far.
+    inlined: usize,
     /// Copies of base implementations needed by SUPER^.m(): (class, base, method).
     supers: Vec<(Symbol, Symbol, Symbol)>,
     pou_params: HashMap<Symbol, Vec<(Symbol, TypeSpec)>>,
@@ -286,6 +348,7 @@ impl<'a> Oop<'a> {
             ids,
             broken: HashSet::new(),
             bad_impl: HashSet::new(),
+            inlined: 0,
             supers: Vec::new(),
             pou_params: HashMap::new(),
             types: HashMap::new(),
@@ -434,8 +497,11 @@ impl<'a> Oop<'a> {
                 }
                 match self.class(b.sym) {
                     None => {
-                        let n = self.name(b.sym);
-                        self.err(Code::E200, b.span, format!("`{n}` is not a function block or class with which `EXTENDS` can be used here"));
+                        // Reported once, at the class that names it.
+                        if cur.name.sym == c {
+                            let n = self.name(b.sym);
+                            self.err(Code::E200, b.span, format!("`{n}` is not a function block or class with which `EXTENDS` can be used here"));
+                        }
                         self.broken.insert(c);
                         break;
                     }
@@ -1388,7 +1454,20 @@ impl<'a> Oop<'a> {
                                     .map(|x| (x.name.sym, x.body.clone()))
                             });
                             match (base, cx.in_method, body) {
+                                (Some(_), false, Some((_, b)))
+                                    if self.inlined + b.len() > MAX_INLINED =>
+                                {
+                                    let _ = b;
+                                    self.err(Code::E213, span, format!("`SUPER^();` would copy more than {MAX_INLINED} statements of base bodies"));
+                                    self.inlined = usize::MAX / 2;
+                                    if let Some(s) = list.get_mut(i) {
+                                        s.kind = StmtKind::Empty;
+                                    }
+                                    i += 1;
+                                    continue;
+                                }
                                 (Some(_), false, Some((k, mut b))) => {
+                                    self.inlined += b.len();
                                     let sub = Ctx {
                                         defined_in: Some(k),
                                         ..cx.clone()
@@ -1405,6 +1484,9 @@ impl<'a> Oop<'a> {
                                 }
                                 _ => {
                                     self.err(Code::E208, span, "`SUPER^()` runs the base's body: only in the body of a function block that EXTENDS another".into());
+                                    if let Some(s) = list.get_mut(i) {
+                                        s.kind = StmtKind::Empty;
+                                    }
                                     i += 1;
                                     continue;
                                 }
