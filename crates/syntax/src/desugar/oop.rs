@@ -802,7 +802,7 @@ impl<'a> Oop<'a> {
                     .map_or(T::Other, |t| self.spec_t(t))
             }
             ExprKind::Deref(b) => {
-                if self.is_word(b, "THIS") && cx.class.is_some() {
+                if self.is_kw(b, "THIS", cx) && cx.class.is_some() {
                     return T::Class(cx.class.unwrap_or(id_none()));
                 }
                 match self.type_of(b, cx) {
@@ -830,6 +830,17 @@ impl<'a> Oop<'a> {
                 _ => T::Other,
             },
             _ => T::Other,
+        }
+    }
+
+    /// `THIS` / `SUPER`, unless a variable of that name is in scope.
+    fn is_kw(&self, e: &Expr, w: &str, cx: &Ctx) -> bool {
+        match &e.kind {
+            ExprKind::Name(id) => {
+                !cx.locals.contains_key(&id.sym)
+                    && self.interner.name(id.sym).eq_ignore_ascii_case(w)
+            }
+            _ => false,
         }
     }
 
@@ -1439,7 +1450,7 @@ impl<'a> Oop<'a> {
                 if let StmtKind::Expr(e) = &s.kind {
                     if let ExprKind::Call { callee, args } = &e.kind {
                         if args.is_empty()
-                            && matches!(&callee.kind, ExprKind::Deref(b) if self.is_word(b, "SUPER"))
+                            && matches!(&callee.kind, ExprKind::Deref(b) if self.is_kw(b, "SUPER", cx))
                         {
                             let span = s.span;
                             let base = cx
@@ -1856,7 +1867,8 @@ impl<'a> Oop<'a> {
         match &mut e.kind {
             ExprKind::Name(id) => {
                 let id = *id;
-                if cx.locals.contains_key(&id.sym) && cx.in_method {
+                // A variable of that name (in a body: the POU's or class's own).
+                if cx.locals.contains_key(&id.sym) {
                     return;
                 }
                 if let Some((m, f)) = cx.result {
@@ -1869,7 +1881,7 @@ impl<'a> Oop<'a> {
                     }
                 }
                 let Some(c) = cx.class else {
-                    if self.is_word(e, "THIS") || self.is_word(e, "SUPER") {
+                    if self.is_kw(e, "THIS", cx) || self.is_kw(e, "SUPER", cx) {
                         self.err(
                             Code::E208,
                             span,
@@ -1879,7 +1891,7 @@ impl<'a> Oop<'a> {
                     }
                     return;
                 };
-                if self.is_word(e, "THIS") || self.is_word(e, "SUPER") {
+                if self.is_kw(e, "THIS", cx) || self.is_kw(e, "SUPER", cx) {
                     self.err(
                         Code::E208,
                         span,
@@ -1904,7 +1916,7 @@ impl<'a> Oop<'a> {
                 }
             }
             ExprKind::Deref(b) => {
-                if self.is_word(b, "THIS") {
+                if self.is_kw(b, "THIS", cx) {
                     if cx.class.is_none() {
                         self.err(
                             Code::E208,
@@ -1916,7 +1928,7 @@ impl<'a> Oop<'a> {
                     *e = self.this_expr(cx, span);
                     return;
                 }
-                if self.is_word(b, "SUPER") {
+                if self.is_kw(b, "SUPER", cx) {
                     self.err(
                         Code::E208,
                         span,
@@ -2054,7 +2066,7 @@ impl<'a> Oop<'a> {
         let target = match &callee.kind {
             ExprKind::Member { base, member } => {
                 if let ExprKind::Deref(b) = &base.kind {
-                    if self.is_word(b, "SUPER") {
+                    if self.is_kw(b, "SUPER", cx) {
                         Target2::Super(cx.defined_in.unwrap_or(id_none()), *member)
                     } else {
                         self.member_target(base, *member, cx)
