@@ -905,15 +905,23 @@ impl<'a> Oop<'a> {
     }
 
     fn rewrite_pou(&mut self, p: &mut Pou) {
+        let mut locals = Self::locals_of(&p.var_blocks);
+        // A function's result is assigned to its name.
+        if let (PouKind::Function, Some(r)) = (p.kind, &p.return_type) {
+            locals.insert(p.name.sym, r.clone());
+        }
         let cx = Ctx {
             class: None,
             defined_in: None,
             in_method: false,
-            locals: Self::locals_of(&p.var_blocks),
+            locals,
             result: None,
         };
         for b in &mut p.var_blocks {
             self.retype_block(b);
+        }
+        if let Some(r) = &mut p.return_type {
+            self.retype_spec(r, VarKind::Output);
         }
         let Body::St(stmts) = &mut p.body;
         self.stmts(stmts, &cx);
@@ -1112,7 +1120,29 @@ impl<'a> Oop<'a> {
         };
         let mut var_blocks = vec![this_block];
         var_blocks.extend(meth.var_blocks.iter().cloned());
-        let locals = Self::locals_of(&meth.var_blocks);
+        // The class's VAR_EXTERNAL are the method's too (globals by name).
+        let mut externals = Vec::new();
+        for kc in self.chain(c) {
+            if let Some(x) = self.class(kc) {
+                externals.extend(
+                    x.var_blocks
+                        .iter()
+                        .filter(|b| b.kind == VarKind::External)
+                        .cloned(),
+                );
+            }
+        }
+        let mut locals = Self::locals_of(&meth.var_blocks);
+        for (n, t) in Self::locals_of(&externals) {
+            locals.entry(n).or_insert(t);
+        }
+        let own = Self::locals_of(&meth.var_blocks);
+        for b in &mut externals {
+            b.decls
+                .retain(|d| d.names.iter().all(|n| !own.contains_key(&n.sym)));
+        }
+        externals.retain(|b| !b.decls.is_empty());
+        var_blocks.extend(externals);
         for b in var_blocks.iter_mut().skip(1) {
             self.retype_block(b);
         }
