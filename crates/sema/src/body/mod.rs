@@ -199,8 +199,10 @@ impl<'m> Checker<'m> {
         }
     }
 
-    pub(crate) fn name(&self, s: Symbol) -> &'m str {
-        self.interner.name(s)
+    /// A name for messages: generated object-oriented POUs are shown as
+    /// written (`__M_Motor__Start` is `Motor.Start`).
+    pub(crate) fn name(&self, s: Symbol) -> std::borrow::Cow<'m, str> {
+        crate::names::display_name(self.interner.name(s))
     }
 
     pub(crate) fn tyname(&self, t: Ty) -> String {
