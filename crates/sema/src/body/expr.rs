@@ -350,7 +350,7 @@ impl<'m> Checker<'m> {
             });
         } else if own && v.section == Section::Input {
             self.err(Code::E041, span, |c| {
-                let pou = c.pou().map_or(Default::default(), |p| c.name(p.name));
+                let pou = c.pou().map_or("", |p| c.name(p.name));
                 format!(
                     "`{}` is a VAR_INPUT of `{pou}` and cannot be assigned inside it",
                     c.name(v.name)

@@ -126,7 +126,7 @@ impl Checker<'_> {
                 let mut diag = automat_base::Diagnostic::error(
                     Code::E105,
                     d.span,
-                    format!("the label `{}` is declared twice", shown(&c.name(sym))),
+                    format!("the label `{}` is declared twice", shown(c.name(sym))),
                 );
                 if let Some(sp) = first {
                     diag = diag.with_label(sp, "first declared here");
@@ -139,7 +139,7 @@ impl Checker<'_> {
                 None => {
                     let sym = g.sym;
                     self.err(Code::E106, g.span, |c| {
-                        format!("unknown label `{}` {}", shown(&c.name(sym)), c.where_())
+                        format!("unknown label `{}` {}", shown(c.name(sym)), c.where_())
                     });
                 }
                 Some(&(list, _)) if !chain.contains(&list) => {
@@ -147,7 +147,7 @@ impl Checker<'_> {
                     self.err(Code::E107, g.span, |c| {
                         format!(
                             "the jump to `{}` would enter nested statements: a jump may only go to a label in its own statement list or an enclosing one",
-                            shown(&c.name(sym))
+                            shown(c.name(sym))
                         )
                     });
                 }

@@ -199,9 +199,13 @@ impl<'m> Checker<'m> {
         }
     }
 
-    /// A name for messages: generated object-oriented POUs are shown as
-    /// written (`__M_Motor__Start` is `Motor.Start`).
-    pub(crate) fn name(&self, s: Symbol) -> std::borrow::Cow<'m, str> {
+    pub(crate) fn name(&self, s: Symbol) -> &'m str {
+        self.interner.name(s)
+    }
+
+    /// A POU's name for messages: generated object-oriented POUs are shown
+    /// as written (`__M_Motor__Start` is `Motor.Start`).
+    pub(crate) fn pou_name(&self, s: Symbol) -> std::borrow::Cow<'m, str> {
         crate::names::display_name(self.interner.name(s))
     }
 

@@ -224,7 +224,7 @@ impl<'m> Checker<'m> {
                 continue;
             }
             let text = self.name(name.sym);
-            let Some(pos) = sig.position_of(&text) else {
+            let Some(pos) = sig.position_of(text) else {
                 self.err(Code::E051, name.span, |c| {
                     format!(
                         "function `{}` has no parameter `{}`",
