@@ -298,6 +298,9 @@ impl<'m> Checker<'m> {
                 .map_or(span, |a| a.span)
                 .to(args.last().map_or(span, |a| a.span));
             let at = if args.is_empty() { span } else { at };
+            // A method's instance (`__THIS`) is not written by the caller.
+            let hidden = usize::from(ins.first().is_some_and(|v| v.name == self.model.syms.this_));
+            let (need, n) = (need - hidden, n.saturating_sub(hidden));
             self.err(Code::E050, at, |c| {
                 format!(
                     "function `{}` expects {need} argument{}, found {n}",
