@@ -5,7 +5,8 @@
 //! Ranges: E000–E019 lexing and syntax, E020–E029 names, E030–E039 types,
 //! E040–E049 assignment, E050–E059 calls, E060–E069 control flow, E070–E079
 //! constants, E080–E089 configuration and addresses; W0xx warnings.
-//! Later stages take E1xx (SFC, IL), E2xx (runtime faults), E3xx (projects, plants).
+//! Later stages take E1xx (SFC, IL, dialects, PLCopen), E200–E219 object orientation (methods,
+//! classes, interfaces), E3xx (projects, plants).
 
 macro_rules! codes {
     ($($code:ident => $title:literal, $explain:literal;)*) => {
@@ -272,6 +273,34 @@ codes! {
         "Festo FST dialect: an STL file is named P<n>.stl (n = 0-63) or B<n>.stl (n = 0-99) and a number is used once; P0 must exist; SET/RESET Pn and CMP n need that program or module; a module has no steps and does not call itself; CFM manufacturer modules are not available.";
     E189 => "bit and word mixed",
         "Festo FST dialect: an operation mixes a single-bit operand with a word, a condition is a word (compare it: `(CW1 = V5)`), N is applied to a word (use INV), or an accumulator operation (SHL, INV, ...) follows a bit.";
+    E200 => "unknown base or interface",
+        "`EXTENDS` names no function block or class (a class extends a class, a function block a function block), or `IMPLEMENTS`/an interface's `EXTENDS` names no interface.";
+    E201 => "FINAL class or method overridden",
+        "A function block or class declared FINAL cannot be extended, and a method declared FINAL cannot be overridden in a derived class.";
+    E202 => "cyclic inheritance",
+        "A class extends itself through its chain of bases, or an interface through its chain of EXTENDS.";
+    E203 => "abstract method not implemented",
+        "A class that is not ABSTRACT has an ABSTRACT method (its own or inherited) without an implementation, or a method declared ABSTRACT has a body. Implement it in the class, or declare the class ABSTRACT.";
+    E204 => "instance of an abstract class",
+        "An ABSTRACT function block or class cannot be instantiated: declare a variable of a derived, non-abstract class (a REF_TO or an interface may still designate it).";
+    E205 => "interface method missing",
+        "A class that IMPLEMENTS an interface must implement every method and property of it (and of the interfaces it extends), with the same return type.";
+    E206 => "unknown method",
+        "The call names no method of the class or interface of its instance (methods are looked up in the class and its bases, and for interface variables in the interface and the interfaces it extends).";
+    E207 => "method not accessible",
+        "A PRIVATE method or property is callable only from the methods and body of its own class, a PROTECTED one also from derived classes, an INTERNAL one from the same namespace (here: the same project).";
+    E208 => "THIS or SUPER out of place",
+        "`THIS` is the current instance, inside a method or the body of a function block or class; `SUPER` its base part, only in a class that EXTENDS another. Write them dereferenced: `THIS^.x`, `SUPER^.m()`.";
+    E209 => "duplicate method",
+        "A class, function block or interface declares two methods or properties of one name, or a method named like one of its variables.";
+    E210 => "property without accessor",
+        "The property is read but has no GET, or written but has no SET.";
+    E211 => "OVERRIDE without a base method",
+        "A method marked OVERRIDE overrides nothing: no base class declares a method of that name.";
+    E212 => "interface assignment",
+        "An interface variable takes an instance of a class that implements the interface (directly, through a base, or through an interface that extends it), or another interface variable of the same interface or of one that extends it.";
+    E213 => "inheritance too large",
+        "A class has more than 64 levels of bases, or the project's classes need more than 50,000 method bodies (every class compiles its own copy of each inherited method). Flatten the hierarchy.";
 
     // ---- projects, plants and scenarios (automat-project, automat-scenario) ----
     E300 => "invalid project file",

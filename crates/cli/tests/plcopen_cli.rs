@@ -166,3 +166,33 @@ fn draw_writes_svg_and_png() {
     let o = automat(&["draw", &p, "--pou", "Latch", "-o", &bad]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// `automat export` refuses object-oriented units (E178, exit 1, no file
+/// written): TC6 2.01 has no element for methods, classes or interfaces.
+#[test]
+fn export_refuses_object_orientation() {
+    let d = dir("export-oop");
+    let src = d.join("oop.st");
+    std::fs::write(
+        &src,
+        "FUNCTION_BLOCK Counter\nVAR_OUTPUT n : INT; END_VAR\nMETHOD Inc : INT\n    n := n + 1;\n    Inc := n;\nEND_METHOD\nEND_FUNCTION_BLOCK\n\
+         PROGRAM Main\nVAR c : Counter; x : INT; END_VAR\n    x := c.Inc();\nEND_PROGRAM\n",
+    )
+    .expect("write");
+    let out_file = d.join("out.xml");
+    let (s, o) = (
+        src.to_string_lossy().into_owned(),
+        out_file.to_string_lossy().into_owned(),
+    );
+    let out = automat(&["export", &s, "-o", &o]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("oop.st:1:16: error[E178]: function block `Counter` has methods, inheritance or interfaces, which TC6 2.01 XML cannot hold"),
+        "{err}"
+    );
+    assert!(!out_file.exists());
+    // The same project runs.
+    let run = automat(&["run", &s, "--cycles", "2", "--print", "x"]);
+    assert_eq!(String::from_utf8_lossy(&run.stdout), "x = 2\n");
+}

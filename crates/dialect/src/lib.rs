@@ -222,6 +222,7 @@ pub fn check_sources(
     }
     if dialects.is_empty() {
         // XML files without a dialect: no rewrite applies.
+        diags.extend(automat_syntax::desugar_oop(&mut units, interner));
         let mut analysis = automat_sema::check(&units, interner);
         diags.append(&mut analysis.diagnostics);
         diags.sort_by_key(|d: &Diagnostic| (d.span.file, d.span.start, d.span.end));
@@ -279,6 +280,7 @@ pub fn check_sources(
         drop_errors_within(&mut diags, &open);
     }
     sections::synthesize(&mut units, &marks, has_children, interner, &mut diags);
+    diags.extend(automat_syntax::desugar_oop(&mut units, interner));
     let mut analysis = automat_sema::check(&units, interner);
     diags.append(&mut analysis.diagnostics);
     diags.sort_by_key(|d: &Diagnostic| (d.span.file, d.span.start, d.span.end));

@@ -188,5 +188,7 @@ fn item_start(i: &Item) -> u32 {
         Item::Types(t) => t.span.start,
         Item::Globals(g) => g.span.start,
         Item::Config(c) => c.span.start,
+        Item::Class(c) => c.span.start,
+        Item::Interface(i) => i.span.start,
     }
 }

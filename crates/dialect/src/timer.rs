@@ -43,6 +43,9 @@ pub fn rewrite(unit: &mut SourceUnit, interner: &mut Interner, diags: &mut Vec<D
                 declare(b, timer, interner);
             }
             Item::Config(c) => rewrite_config(c, timer, interner),
+            // Dialect rewrites run before the object-orientation desugaring
+            // and leave classes alone.
+            Item::Class(_) | Item::Interface(_) => {}
             Item::Types(t) => {
                 for d in &mut t.decls {
                     reject_nested(&mut d.spec, timer, interner, diags);

@@ -171,7 +171,10 @@ pub fn check(cx: &Cx) -> Result<(), Diagnostic> {
                         let mut names: Vec<String> = path[from..]
                             .iter()
                             .filter_map(|(p, _)| cx.model.pou(PouId(*p as u32)))
-                            .map(|p| cx.interner.name(p.name).to_string())
+                            .map(|p| {
+                                automat_sema::names::display_name(cx.interner.name(p.name))
+                                    .into_owned()
+                            })
                             .collect();
                         names.push(names.first().cloned().unwrap_or_default());
                         let span = cx

@@ -409,6 +409,24 @@ pub fn export(
                 Item::Types(t) => ex.data_types(&mut types, t),
                 Item::Pou(p) => ex.pou(&mut pous, p),
                 Item::Config(c) => ex.config(&mut configs, c),
+                Item::Class(c) => ex.err(
+                    c.name.span,
+                    format!(
+                        "{} `{}` has methods, inheritance or interfaces, which TC6 2.01 XML cannot hold",
+                        match c.kind {
+                            automat_syntax::ast::oop::ClassKind::Class => "class",
+                            automat_syntax::ast::oop::ClassKind::FunctionBlock => "function block",
+                        },
+                        ex.text(c.name.span)
+                    ),
+                ),
+                Item::Interface(i) => ex.err(
+                    i.name.span,
+                    format!(
+                        "interface `{}`: TC6 2.01 XML has no interfaces",
+                        ex.text(i.name.span)
+                    ),
+                ),
                 Item::Globals(g) => ex.err(
                     g.span,
                     "a VAR_GLOBAL outside a CONFIGURATION has no place in TC6 XML: declare it in a configuration",

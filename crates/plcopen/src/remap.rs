@@ -44,6 +44,8 @@ impl Remap<'_> {
             }
             Item::Globals(b) => self.block(b),
             Item::Config(c) => self.config(c),
+            // The TC6 importer builds no object-oriented items.
+            Item::Class(_) | Item::Interface(_) => {}
         }
     }
 

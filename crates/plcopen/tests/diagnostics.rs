@@ -312,3 +312,45 @@ fn export_refuses_what_tc6_cannot_hold() {
         "{report}"
     );
 }
+
+/// Object-oriented units (methods, EXTENDS/IMPLEMENTS, CLASS, INTERFACE):
+/// TC6 2.01 has no element for them, so export refuses each (E178) rather
+/// than writing the generated plain POUs, which would not read back as the
+/// program that was written.
+#[test]
+fn export_refuses_object_oriented_units() {
+    let mut map = SourceMap::new();
+    map.add(
+        "oop.st",
+        "INTERFACE IRun\nMETHOD Start : INT\nEND_METHOD\nEND_INTERFACE\n\
+         FUNCTION_BLOCK Motor IMPLEMENTS IRun\nMETHOD Start : INT\n    Start := 1;\nEND_METHOD\nEND_FUNCTION_BLOCK\n\
+         CLASS Keeper\nVAR v : INT; END_VAR\nMETHOD Get : INT\n    Get := v;\nEND_METHOD\nEND_CLASS\n\
+         PROGRAM P\nVAR m : Motor; k : Keeper; x : INT; END_VAR\n    x := m.Start() + k.Get();\nEND_PROGRAM\n\
+         CONFIGURATION C\nRESOURCE R ON PLC\nTASK T (INTERVAL := T#10ms);\nPROGRAM I WITH T : P;\nEND_RESOURCE\nEND_CONFIGURATION\n",
+    );
+    let mut interner = Interner::new();
+    let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &[]);
+    assert!(
+        !analysis.has_errors(),
+        "{}",
+        render::render_report(&map, &analysis.diagnostics)
+    );
+    let Err(d) = automat_plcopen::export(&units, &map, "oop") else {
+        panic!("exported object-oriented units");
+    };
+    let report = render::render_report(&map, &d);
+    assert!(
+        report
+            .contains("oop.st:1:11: error[E178]: interface `IRun`: TC6 2.01 XML has no interfaces"),
+        "{report}"
+    );
+    assert!(
+        report.contains("oop.st:5:16: error[E178]: function block `Motor` has methods, inheritance or interfaces, which TC6 2.01 XML cannot hold"),
+        "{report}"
+    );
+    assert!(
+        report.contains("oop.st:10:7: error[E178]: class `Keeper`"),
+        "{report}"
+    );
+    assert_eq!(d.len(), 3, "{report}");
+}

@@ -9,7 +9,7 @@
 //! Left out, and counted: cases of a vendor dialect (their rewrites work on
 //! the ST text), cases expecting a fault (the expected line is an ST line),
 //! and projects TC6 cannot hold (E178: a VAR_GLOBAL outside a
-//! configuration).
+//! configuration, the object-oriented `oop_*` cases).
 
 use automat_base::{Code, Interner, SourceMap};
 use automat_scenario::conformance::{is_conformance, judge, Backend, Verdict};

@@ -182,6 +182,19 @@ impl Gen<'_, '_> {
                 if let Some(idx) = pou.vars.index(id.sym) {
                     return self.var_lv(idx, e.span);
                 }
+                // `__SELF`: the current function block instance (the
+                // object-orientation desugaring passes it to methods).
+                if id.sym == model.syms.self_
+                    && pou.kind == automat_syntax::ast::PouKind::FunctionBlock
+                {
+                    if let Some(ty) = pou.instance_type {
+                        return Ok(Lv {
+                            addr: Addr::this(0),
+                            bit: None,
+                            ty,
+                        });
+                    }
+                }
                 if let Some(&(off, bit, ty)) = self.cx.globals.get(&id.sym) {
                     return Ok(Lv {
                         addr: Addr::abs(off),

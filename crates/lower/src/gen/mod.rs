@@ -136,7 +136,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             .cx
             .model
             .pou(self.pou)
-            .map(|p| self.cx.interner.name(p.name).to_string())
+            .map(|p| automat_sema::names::display_name(self.cx.interner.name(p.name)).into_owned())
             .unwrap_or_default();
         self.cx.sites.push(Site {
             pou,

@@ -124,7 +124,7 @@ impl<'m> Checker<'m> {
                         None => {
                             if !as_stmt {
                                 self.err(Code::E030, span, |c| {
-                                    format!("function `{}` has no return value", c.name(sym))
+                                    format!("function `{}` has no return value", c.pou_name(sym))
                                 });
                             }
                             Typed::ERROR
@@ -133,7 +133,7 @@ impl<'m> Checker<'m> {
                 }
                 PouKind::FunctionBlock => {
                     self.err(Code::E053, span, |c| {
-                        let n = c.name(sym);
+                        let n = c.pou_name(sym);
                         format!("`{n}` is a function block type, not a function; declare an instance (`inst : {n};`) and call the instance")
                     });
                     self.args_unchecked(args);
@@ -143,7 +143,7 @@ impl<'m> Checker<'m> {
                     self.err(Code::E054, span, |c| {
                         format!(
                             "program `{}` cannot be called from Structured Text",
-                            c.name(sym)
+                            c.pou_name(sym)
                         )
                     });
                     self.args_unchecked(args);
@@ -194,7 +194,7 @@ impl<'m> Checker<'m> {
                 self.err(Code::E055, a.span, |c| {
                     format!(
                         "the call of `{}` mixes formal (`name := value`) and positional arguments",
-                        c.name(pou.name)
+                        c.pou_name(pou.name)
                     )
                 });
             }
@@ -207,7 +207,7 @@ impl<'m> Checker<'m> {
                     self.err(Code::E055, a.span, |c| {
                         format!(
                             "function block `{}` must be called with formal arguments (`name := value`)",
-                            c.name(pou.name)
+                            c.pou_name(pou.name)
                         )
                     });
                 }
@@ -225,7 +225,7 @@ impl<'m> Checker<'m> {
                     format!(
                         "parameter `{}` is given twice in the call of `{}`",
                         c.name(name.sym),
-                        c.name(pou.name)
+                        c.pou_name(pou.name)
                     )
                 });
                 if let Some(v) = &a.value {
@@ -257,7 +257,7 @@ impl<'m> Checker<'m> {
                     };
                     format!(
                         "{what} `{}` has no parameter `{}`",
-                        c.name(pou.name),
+                        c.pou_name(pou.name),
                         c.name(name.sym)
                     )
                 });
@@ -275,7 +275,7 @@ impl<'m> Checker<'m> {
                     format!(
                         "the VAR_IN_OUT `{}` of `{}` is not bound in this call",
                         c.name(v.name),
-                        c.name(pou.name)
+                        c.pou_name(pou.name)
                     )
                 });
             }
@@ -302,10 +302,13 @@ impl<'m> Checker<'m> {
                 .map_or(span, |a| a.span)
                 .to(args.last().map_or(span, |a| a.span));
             let at = if args.is_empty() { span } else { at };
+            // A method's instance (`__THIS`) is not written by the caller.
+            let hidden = usize::from(ins.first().is_some_and(|v| v.name == self.model.syms.this_));
+            let (need, n) = (need - hidden, n.saturating_sub(hidden));
             self.err(Code::E050, at, |c| {
                 format!(
                     "function `{}` expects {need} argument{}, found {n}",
-                    c.name(pou.name),
+                    c.pou_name(pou.name),
                     if need == 1 { "" } else { "s" }
                 )
             });
@@ -374,7 +377,7 @@ impl<'m> Checker<'m> {
                         format!(
                             "the output `{}` of `{}` has type {}, which cannot be stored in `{}` of type {}",
                             c.name(param.name),
-                            c.name(pou.name),
+                            c.pou_name(pou.name),
                             c.type_name(param.ty),
                             expr_text(c.interner, v),
                             c.type_name(tt)
@@ -387,7 +390,7 @@ impl<'m> Checker<'m> {
                     format!(
                         "`{}` is an output of `{}`: bind it with `=>`",
                         c.name(param.name),
-                        c.name(pou.name)
+                        c.pou_name(pou.name)
                     )
                 });
                 if let Some(v) = &a.value {
@@ -399,7 +402,7 @@ impl<'m> Checker<'m> {
                     format!(
                         "`{}` is an input of `{}`: pass it with `:=`",
                         c.name(param.name),
-                        c.name(pou.name)
+                        c.pou_name(pou.name)
                     )
                 });
                 if let Some(v) = &a.value {
@@ -415,7 +418,7 @@ impl<'m> Checker<'m> {
                             format!(
                                 "the VAR_IN_OUT `{}` of `{}` needs a variable of type {}, found {}",
                                 c.name(param.name),
-                                c.name(pou.name),
+                                c.pou_name(pou.name),
                                 c.type_name(param.ty),
                                 c.type_name(at)
                             )
@@ -430,7 +433,7 @@ impl<'m> Checker<'m> {
                     format!(
                         "parameter `{}` of `{}`",
                         c.name(param.name),
-                        c.name(pou.name)
+                        c.pou_name(pou.name)
                     )
                 };
                 self.arg_fits(&t, param.ty, v.span, &what);

@@ -285,6 +285,11 @@ impl<'m> Checker<'m> {
     }
 
     fn name_expr(&mut self, id: Ident, expect: Option<TypeId>, access: Access) -> Typed {
+        if id.sym == self.model.syms.self_ {
+            if let Some(t) = self.self_type() {
+                return Typed::of(t);
+            }
+        }
         if let Some((v, own)) = self.var(id.sym) {
             if access.writes() {
                 self.check_write(v, own, id.span, access);
@@ -455,7 +460,19 @@ impl<'m> Checker<'m> {
                     }
                     return Typed::of(TypeId::BOOL);
                 }
+                // A generated method reaches every member of its class
+                // through `__THIS` (access rules were checked by the
+                // desugaring, at the source's names).
+                let this = matches!(&base.kind, ExprKind::Name(t) if t.sym == syms.this_)
+                    || matches!(&base.kind, ExprKind::Name(t) if t.sym == syms.self_);
                 match var {
+                    Some(v) if this => {
+                        if v.ty == TypeId::ERROR {
+                            Typed::ERROR
+                        } else {
+                            Typed::of(v.ty)
+                        }
+                    }
                     Some(v) if v.section.is_param() => {
                         if access.writes() && v.section == Section::Output {
                             self.err(Code::E042, member.span, |c| {

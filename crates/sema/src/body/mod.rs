@@ -141,6 +141,18 @@ impl<'m> Checker<'m> {
             PouKind::Program => s == Section::Temp,
             _ => matches!(s, Section::Local | Section::Temp),
         };
+        // A class's state is used by its generated methods (through `__THIS`).
+        let this = self.model.syms.this_;
+        let has_methods = pou.kind == PouKind::FunctionBlock
+            && pou.instance_type.is_some_and(|t| {
+                self.model
+                    .pous
+                    .iter()
+                    .any(|p| p.vars.get(this).is_some_and(|v| v.ty == t))
+            });
+        if has_methods {
+            return;
+        }
         for (i, v) in pou.vars.vars.iter().enumerate() {
             let used = self.used.get(i).is_some_and(Cell::get);
             if !used && private(v.section) && v.location.is_none() && !v.constant {
@@ -189,6 +201,12 @@ impl<'m> Checker<'m> {
 
     pub(crate) fn name(&self, s: Symbol) -> &'m str {
         self.interner.name(s)
+    }
+
+    /// A POU's name for messages: generated object-oriented POUs are shown
+    /// as written (`__M_Motor__Start` is `Motor.Start`).
+    pub(crate) fn pou_name(&self, s: Symbol) -> std::borrow::Cow<'m, str> {
+        crate::names::display_name(self.interner.name(s))
     }
 
     pub(crate) fn tyname(&self, t: Ty) -> String {
@@ -321,6 +339,21 @@ impl<'m> Checker<'m> {
     }
 
     /// The variable a name denotes in the current scope.
+    /// The type of `__SELF` (the current instance) in a function block
+    /// body; `None` elsewhere or when a variable of that name exists.
+    pub(crate) fn self_type(&self) -> Option<TypeId> {
+        let Scope::Pou(id) = self.scope else {
+            return None;
+        };
+        let p = self.model.pou(id)?;
+        if p.kind != automat_syntax::ast::PouKind::FunctionBlock
+            || p.vars.index(self.model.syms.self_).is_some()
+        {
+            return None;
+        }
+        p.instance_type
+    }
+
     pub(crate) fn var(&self, sym: Symbol) -> Option<(&'m Var, bool)> {
         match self.scope {
             Scope::Pou(id) => {

@@ -29,6 +29,8 @@ impl<'a> Builder<'a> {
                     }
                     Item::Globals(block) => self.add_block(0, block),
                     Item::Config(c) => self.add_config(c),
+                    // Replaced by plain items (`automat_syntax::desugar_oop`).
+                    Item::Class(_) | Item::Interface(_) => {}
                 }
             }
         }

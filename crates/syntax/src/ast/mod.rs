@@ -16,6 +16,7 @@
 mod decl;
 mod expr;
 pub mod il;
+pub mod oop;
 pub mod sfc;
 mod stmt;
 
@@ -49,4 +50,9 @@ pub enum Item {
     /// and TwinCAT global variable lists are written).
     Globals(VarBlock),
     Config(Configuration),
+    /// A function block with methods (or EXTENDS/IMPLEMENTS), or a CLASS;
+    /// `desugar_oop` replaces it by plain items.
+    Class(Box<oop::Class>),
+    /// An INTERFACE; `desugar_oop` replaces it by plain items.
+    Interface(Box<oop::Interface>),
 }

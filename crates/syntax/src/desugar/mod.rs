@@ -31,4 +31,5 @@
 //!   whose `lang` is a chart built by an importer (macro-steps allowed).
 
 pub(crate) mod il;
+pub(crate) mod oop;
 pub(crate) mod sfc;

@@ -26,8 +26,8 @@ impl Parser<'_> {
             match self.peek() {
                 Tok::Eof => break,
                 Tok::Kw(Kw::Program | Kw::Function | Kw::FunctionBlock) => {
-                    if let Some(pou) = self.pou() {
-                        items.push(Item::Pou(pou));
+                    if let Some(item) = self.pou() {
+                        items.push(item);
                     }
                 }
                 Tok::Kw(Kw::Type) => items.push(Item::Types(self.type_block())),
@@ -35,6 +35,18 @@ impl Parser<'_> {
                 Tok::Kw(Kw::Configuration) => {
                     if let Some(c) = self.configuration() {
                         items.push(Item::Config(c));
+                    }
+                }
+                Tok::Ident(_) if self.is_word("CLASS") && matches!(self.nth(1), Tok::Ident(_)) => {
+                    if let Some(c) = self.class() {
+                        items.push(Item::Class(Box::new(c)));
+                    }
+                }
+                Tok::Ident(_)
+                    if self.is_word("INTERFACE") && matches!(self.nth(1), Tok::Ident(_)) =>
+                {
+                    if let Some(i) = self.interface() {
+                        items.push(Item::Interface(Box::new(i)));
                     }
                 }
                 _ => {
@@ -54,7 +66,7 @@ impl Parser<'_> {
 
     /// FUNCTION, FUNCTION_BLOCK or PROGRAM, at its keyword. `None` when it
     /// has no name (the error was reported and its text consumed).
-    fn pou(&mut self) -> Option<Pou> {
+    fn pou(&mut self) -> Option<Item> {
         let opener = self.bump();
         let (kind, end, frame, what) = match opener.tok {
             Tok::Kw(Kw::Function) => (PouKind::Function, Kw::EndFunction, END_FUNCTION, "function"),
@@ -66,7 +78,14 @@ impl Parser<'_> {
             ),
             _ => (PouKind::Program, Kw::EndProgram, END_PROGRAM, "program"),
         };
+        let mut head = super::oop::FbHead::default();
+        if kind == PouKind::FunctionBlock {
+            self.fb_modifiers_before_name(&mut head);
+        }
         let name = self.expect_ident(&format!("the name of the {what}"));
+        if kind == PouKind::FunctionBlock {
+            self.fb_head_after_name(&mut head);
+        }
         let return_type = if kind == PouKind::Function && self.eat(Tok::Colon) {
             self.type_spec()
         } else {
@@ -87,6 +106,11 @@ impl Parser<'_> {
                 _ => break,
             }
         }
+        let (mut methods, mut properties) = (Vec::new(), Vec::new());
+        if kind == PouKind::FunctionBlock {
+            self.oop_depth += 1;
+            self.members(&mut methods, &mut properties);
+        }
         self.frames.push(frame);
         let (body, lang) = if self.at_sfc_start() {
             self.sfc_body(kind, &mut var_blocks)
@@ -104,6 +128,11 @@ impl Parser<'_> {
             }
         };
         self.frames.pop();
+        if kind == PouKind::FunctionBlock {
+            // Methods may also follow the body (as some tools write them).
+            self.members(&mut methods, &mut properties);
+            self.oop_depth -= 1;
+        }
         if !self.eat_kw(end) {
             self.report_unclosed(end, opener);
             match self.peek() {
@@ -121,15 +150,33 @@ impl Parser<'_> {
                 }
             }
         }
-        Some(Pou {
+        let name = name?;
+        let span = self.span_from(opener.start);
+        if head.any || !methods.is_empty() || !properties.is_empty() {
+            return Some(Item::Class(Box::new(crate::ast::oop::Class {
+                kind: crate::ast::oop::ClassKind::FunctionBlock,
+                name,
+                is_abstract: head.is_abstract,
+                is_final: head.is_final,
+                extends: head.extends,
+                implements: head.implements,
+                var_blocks,
+                methods,
+                properties,
+                body,
+                span,
+                desugared: false,
+            })));
+        }
+        Some(Item::Pou(Pou {
             kind,
-            name: name?,
+            name,
             return_type,
             var_blocks,
             body: Body::St(body),
             lang,
-            span: self.span_from(opener.start),
-        })
+            span,
+        }))
     }
 
     /// `TYPE decl; ... END_TYPE`, at `TYPE`.

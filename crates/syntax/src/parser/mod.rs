@@ -24,6 +24,7 @@ mod expr;
 mod il;
 mod init;
 mod items;
+mod oop;
 mod sfc;
 mod stmt;
 mod types;
@@ -56,6 +57,9 @@ pub struct Parser<'a> {
     /// one (`x := 5 @ 3`, an unterminated string eating the `;`) is a
     /// consequence of it and is not reported again.
     lex_error_ends: Vec<u32>,
+    /// Inside a method, property or class: statement lists stop at their
+    /// contextual closers (`END_METHOD`, ...).
+    oop_depth: u32,
 }
 
 /// Parses a lexed file into a [`SourceUnit`]; diagnostics are appended to `diags`.
@@ -80,6 +84,7 @@ pub fn parse_tokens(
         deep_reported: false,
         frames: Vec::new(),
         lex_error_ends: diags.iter().map(|d| d.span.end).collect(),
+        oop_depth: 0,
     };
     p.lex_error_ends.sort_unstable();
     if p.toks.last().map(|t| t.tok) != Some(Tok::Eof) {

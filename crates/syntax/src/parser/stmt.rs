@@ -86,6 +86,9 @@ impl Parser<'_> {
                 }
                 _ => {}
             }
+            if self.at_oop_boundary() {
+                break;
+            }
             if case_arm && self.looks_like_case_label() {
                 break;
             }
