@@ -104,6 +104,8 @@ fn main() {
         stop: Arc::new(AtomicBool::new(false)),
         retain: None,
         safe: None,
+        realtime: None,
+        wait_after_fault: true,
     };
     let session = Arc::new(
         Session::start(

@@ -57,6 +57,8 @@ fn session() -> Arc<Session> {
         stop: Arc::new(AtomicBool::new(false)),
         retain: None,
         safe: None,
+        realtime: None,
+        wait_after_fault: true,
     };
     let s = Session::start(
         program,

@@ -40,7 +40,10 @@ END_PROGRAM",
         ],
     );
     let m = messages("PROGRAM p\nVAR i : INT; d : DINT; END_VAR\n i := d;\nEND_PROGRAM");
-    assert_eq!(m, ["cannot assign a value of type DINT to `i` of type INT"]);
+    assert_eq!(
+        m,
+        ["cannot assign a value of type DINT to `i` of type INT; convert it with `DINT_TO_INT(...)`"]
+    );
 }
 
 #[test]
