@@ -43,6 +43,8 @@ fuzz_target!(|data: &[u8]| {
                 .collect(),
             Shape::Band { x, y, w, h } => vec![*x, *y, *w, *h],
             Shape::Line { x1, y1, x2, y2, .. } => vec![*x1, *y1, *x2, *y2],
+            Shape::Rect { x, y, w, h, .. } => vec![*x, *y, *w, *h],
+            Shape::Circle { cx, cy, r, .. } => vec![*cx, *cy, *r],
             Shape::Text { x, y, .. } => vec![*x, *y],
         };
         assert!(xs.iter().all(|x| x.is_finite()), "{s:?}");
