@@ -144,9 +144,15 @@ impl ImageWriter<'_, '_> {
                     self.init(at + off, None, m.ty, given.or(m.init.as_ref()), depth + 1);
                 }
             }
-            (TypeKind::Fb { pou, .. } | TypeKind::Program { pou, .. }, _) => {
+            (TypeKind::Fb { pou, .. } | TypeKind::Program { pou, .. }, init) => {
                 let pou = *pou;
-                self.instance(at, pou, depth + 1);
+                // `t : TON := (PT := T#2s)`: the given members win over the
+                // declared initial values of the function block.
+                let given = match init {
+                    Some(Init::Struct(fs)) => fs.as_slice(),
+                    _ => &[],
+                };
+                self.instance_with(at, pou, depth + 1, given);
             }
             _ => {}
         }
@@ -154,6 +160,18 @@ impl ImageWriter<'_, '_> {
 
     /// The initial values of a POU instance (or function frame) at `at`.
     pub fn instance(&mut self, at: u32, pou: automat_sema::PouId, depth: u32) {
+        self.instance_with(at, pou, depth, &[]);
+    }
+
+    /// [`instance`](Self::instance) with some members' initial values given
+    /// by the instance's declaration.
+    fn instance_with(
+        &mut self,
+        at: u32,
+        pou: automat_sema::PouId,
+        depth: u32,
+        given: &[automat_sema::value::FieldInit],
+    ) {
         let model = self.layout.model;
         let l = self.layout.pou(pou);
         let Some(p) = model.pou(pou) else { return };
@@ -161,13 +179,14 @@ impl ImageWriter<'_, '_> {
             if v.section == Section::InOut {
                 continue;
             }
+            let init = given
+                .iter()
+                .find(|f| f.name == v.name)
+                .map(|f| &f.value)
+                .or(v.init.as_ref());
             match *slot {
-                crate::layout::Slot::Rel(off) => {
-                    self.init(at + off, None, v.ty, v.init.as_ref(), depth)
-                }
-                crate::layout::Slot::Located(off, bit) => {
-                    self.init(off, bit, v.ty, v.init.as_ref(), depth)
-                }
+                crate::layout::Slot::Rel(off) => self.init(at + off, None, v.ty, init, depth),
+                crate::layout::Slot::Located(off, bit) => self.init(off, bit, v.ty, init, depth),
                 crate::layout::Slot::External => {}
             }
         }
