@@ -33,7 +33,7 @@ END_PROGRAM
         vec![
             ("E005", 4),  // missing `;` after `a : INT`
             ("E005", 5),  // no type after `c :`
-            ("E005", 8),  // missing `;` after `a := 1`
+            ("E005", 7),  // missing `;` after `a := 1`, at the end of its line
             ("E005", 10), // missing THEN
             ("E004", 12), // 16#G0
             ("E005", 13), // no operand after `+`
@@ -129,7 +129,7 @@ fn spans_point_at_the_offending_token() {
 fn one_missing_semicolon_is_one_error() {
     assert_eq!(
         errors("PROGRAM p\nx := 1\ny := 2\nz := 3;\nEND_PROGRAM"),
-        vec![("E005", 3), ("E005", 4)]
+        vec![("E005", 2), ("E005", 3)]
     );
     // On one line the rest of the statement is skipped, not re-parsed.
     assert_eq!(
@@ -138,7 +138,7 @@ fn one_missing_semicolon_is_one_error() {
     );
     assert_eq!(
         errors("PROGRAM p\nIF a THEN x := 1; END_IF\nEND_PROGRAM"),
-        vec![("E005", 3)]
+        vec![("E005", 2)]
     );
 }
 

@@ -36,9 +36,7 @@ impl<'m> Checker<'m> {
         as_stmt: bool,
     ) -> Typed {
         if let ExprKind::Name(id) = &callee.kind {
-            // Inside a function its name is also its return value; a call is the function.
-            let var = self.var(id.sym);
-            if var.is_none_or(|(v, _)| v.section == crate::model::Section::Return) {
+            if self.name_calls_a_function(id.sym) {
                 return self.call_by_name(e, id.sym, id.span, args, expect, as_stmt);
             }
         }
@@ -105,6 +103,27 @@ impl<'m> Checker<'m> {
         Typed::ERROR
     }
 
+    /// Whether `name(...)` calls the function of that name rather than an
+    /// instance: no variable has the name, or it is the function's own
+    /// return value, or the variable cannot be called and a function of
+    /// that name exists (a local `sel` or `max` does not hide `SEL`/`MAX`).
+    pub(crate) fn name_calls_a_function(&mut self, sym: Symbol) -> bool {
+        let Some((v, _)) = self.var(sym) else {
+            return true;
+        };
+        if v.section == crate::model::Section::Return {
+            return true;
+        }
+        if self.fb_of(v.ty).is_some() {
+            return false;
+        }
+        let user_function = self
+            .model
+            .pou_named(sym)
+            .is_some_and(|(_, p)| p.kind == PouKind::Function);
+        user_function || self.std_fn(sym).is_some()
+    }
+
     fn call_by_name(
         &mut self,
         e: &Expr,
@@ -114,7 +133,7 @@ impl<'m> Checker<'m> {
         expect: Option<TypeId>,
         as_stmt: bool,
     ) -> Typed {
-        match self.lookup(sym) {
+        match self.lookup_callee(sym) {
             Named::Pou(id, p) => match p.kind {
                 PouKind::Function => {
                     self.pou_args(id, args, Callee::Function, e.span);

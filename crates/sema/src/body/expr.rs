@@ -297,7 +297,9 @@ impl<'m> Checker<'m> {
             if v.ty == TypeId::ERROR {
                 return Typed::ERROR;
             }
-            let value = if v.constant {
+            // A VAR_INPUT CONSTANT is an input the body may not assign: its
+            // value is the caller's, never folded from its default.
+            let value = if v.constant && v.section != crate::model::Section::Input {
                 v.init
                     .as_ref()
                     .and_then(|i| i.as_value())

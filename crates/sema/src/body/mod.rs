@@ -410,6 +410,21 @@ impl<'m> Checker<'m> {
         Named::Unknown
     }
 
+    /// What a called name denotes: a POU, a type or a standard function
+    /// before a variable of the same name (see `name_calls_a_function`).
+    pub(crate) fn lookup_callee(&mut self, sym: Symbol) -> Named<'m> {
+        if let Some((id, p)) = self.model.pou_named(sym) {
+            return Named::Pou(id, p);
+        }
+        if self.model.type_names.contains_key(&sym) || self.model.syms.is_elementary(sym) {
+            return Named::Type;
+        }
+        if self.std_fn(sym).is_some() {
+            return Named::StdFn;
+        }
+        self.lookup(sym)
+    }
+
     /// The standard function of a name (cached per name).
     pub(crate) fn std_fn(&mut self, sym: Symbol) -> Option<Rc<Sig>> {
         let interner = self.interner;

@@ -72,8 +72,7 @@ pub fn resolve_callee(
 ) -> Option<CallTarget> {
     let mut ck = Checker::new(model, interner, Scope::Pou(pou), true);
     if let ExprKind::Name(id) = &callee.kind {
-        let var = ck.var(id.sym);
-        if var.is_none_or(|(v, _)| v.section == crate::model::Section::Return) {
+        if ck.name_calls_a_function(id.sym) {
             if let Some((pid, p)) = model.pou_named(id.sym) {
                 return (p.kind == PouKind::Function).then_some(CallTarget::Function(pid));
             }

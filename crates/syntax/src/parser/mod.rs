@@ -293,6 +293,19 @@ impl<'a> Parser<'a> {
     /// Reports "expected `{word}` {context}, found ...".
     #[cold]
     #[inline(never)]
+    /// An E005 just after the previous token (where a missing `;` belongs),
+    /// counted as reported at the current token.
+    fn error_at_prev_end(&mut self, msg: String) {
+        if self.last_error == Some(self.pos) {
+            return;
+        }
+        self.last_error = Some(self.pos);
+        if !self.follows_lex_error() {
+            let span = Span::new(self.file, self.prev_end, self.prev_end);
+            self.diags.push(Diagnostic::error(Code::E005, span, msg));
+        }
+    }
+
     fn expected_word(&mut self, word: &str, context: &str) {
         self.expected(&format!("`{word}` {context}"));
     }

@@ -64,7 +64,17 @@ impl Parser<'_> {
         if self.eat(Tok::Semi) {
             return;
         }
-        self.expected_word(";", context);
+        if self.newline_before_cur() {
+            // The line that lacks it is the one to point at, not the next
+            // statement's.
+            let msg = format!(
+                "expected `;` {context}, at the end of this line (the next line starts with {})",
+                self.found()
+            );
+            self.error_at_prev_end(msg);
+        } else {
+            self.expected_word(";", context);
+        }
         if !(self.newline_before_cur() || self.at_stmt_sync()) {
             self.recover_stmt();
         }
