@@ -49,6 +49,11 @@ pub fn scalar_bits(v: &Value, e: Elem) -> u64 {
 pub struct ImageWriter<'l, 'm> {
     pub layout: &'l mut Layout<'m>,
     pub img: Vec<u8>,
+    /// Where each global lives (for `REF(global)` initial values).
+    pub globals: &'l rustc_hash::FxHashMap<automat_base::Symbol, (u32, Option<u8>, TypeId)>,
+    /// The instance whose variables are being written: `REF(x)` of one of
+    /// its own variables points into it.
+    pub here: Option<(u32, automat_sema::PouId)>,
 }
 
 impl ImageWriter<'_, '_> {
@@ -80,6 +85,10 @@ impl ImageWriter<'_, '_> {
                     Some(b) => put_bit(&mut self.img, at, b, v & 1 != 0),
                     None => put(&mut self.img, at, mem_ty(e), v),
                 }
+            }
+            (TypeKind::Ref(_), Some(Init::Ref(target))) => {
+                let addr = target.map_or(0, |sym| self.ref_target(sym));
+                put(&mut self.img, at, MemTy::U32, u64::from(addr));
             }
             (TypeKind::String { wide, len }, Some(Init::Value(Value::Str(s)))) => {
                 let (wide, cap) = (*wide, *len as usize);
@@ -175,6 +184,7 @@ impl ImageWriter<'_, '_> {
         let model = self.layout.model;
         let l = self.layout.pou(pou);
         let Some(p) = model.pou(pou) else { return };
+        let outer = self.here.replace((at, pou));
         for (v, slot) in p.vars.vars.iter().zip(l.slots.iter()) {
             if v.section == Section::InOut {
                 continue;
@@ -190,6 +200,24 @@ impl ImageWriter<'_, '_> {
                 crate::layout::Slot::External => {}
             }
         }
+        self.here = outer;
+    }
+
+    /// The address `REF(sym)` denotes here: a variable of the current
+    /// instance, else a global (the checker allowed nothing else).
+    fn ref_target(&mut self, sym: automat_base::Symbol) -> u32 {
+        if let Some((base, pou)) = self.here {
+            let model = self.layout.model;
+            if let Some(i) = model.pou(pou).and_then(|p| p.vars.index(sym)) {
+                let slot = self.layout.pou(pou).slots.get(i as usize).copied();
+                match slot {
+                    Some(crate::layout::Slot::Rel(off)) => return base + off,
+                    Some(crate::layout::Slot::Located(off, _)) => return off,
+                    _ => {}
+                }
+            }
+        }
+        self.globals.get(&sym).map_or(0, |g| g.0)
     }
 
     /// True when every byte of the type's default is zero (nothing to write).

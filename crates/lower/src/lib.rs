@@ -228,6 +228,8 @@ fn lower_as(
     let mut w = image::ImageWriter {
         layout: &mut cx.layout,
         img: vec![0; image_size as usize],
+        globals: &cx.globals,
+        here: None,
     };
     for (off, bit, ty, init) in &global_inits {
         w.init(*off, *bit, *ty, init.as_ref(), 0);

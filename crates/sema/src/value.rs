@@ -75,6 +75,10 @@ pub enum Init {
     /// Elements in order; each may repeat. `value: None` is `n()`: the default.
     Array(Vec<ArrayInit>),
     Struct(Vec<FieldInit>),
+    /// A `REF_TO` variable's initial value: `NULL` (`None`) or `REF(x)` of
+    /// the variable `x`, a variable of the same PROGRAM or FUNCTION_BLOCK
+    /// instance or else a global, resolved to its address in the image.
+    Ref(Option<automat_base::Symbol>),
 }
 
 #[derive(Clone, Debug, PartialEq)]

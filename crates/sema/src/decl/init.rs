@@ -12,6 +12,126 @@ use automat_syntax::ast::{Ident, Initializer};
 use rustc_hash::FxHashMap;
 
 impl<'a> Builder<'a> {
+    /// The initial value of a `REF_TO` variable: `NULL`, or `REF(x)` /
+    /// `ADR(x)` of a variable whose address is fixed in the image — a
+    /// global, or a variable of the same PROGRAM or FUNCTION_BLOCK (each
+    /// instance then refers to its own `x`), of the referenced type.
+    fn ref_init(
+        &mut self,
+        e: &automat_syntax::ast::Expr,
+        ty: TypeId,
+        scope: usize,
+        name: Ident,
+    ) -> Option<Init> {
+        use automat_syntax::ast::ExprKind;
+        let TypeKind::Ref(target) = *self.types.get(ty) else {
+            return None;
+        };
+        let n = self.name(name.sym);
+        let mut inner = e;
+        while let ExprKind::Paren(x) = &inner.kind {
+            inner = x;
+        }
+        if let ExprKind::Name(id) = &inner.kind {
+            if self.name(id.sym).eq_ignore_ascii_case("NULL")
+                && self.find_slot(scope, id.sym).is_none()
+            {
+                return Some(Init::Ref(None));
+            }
+        }
+        let arg = match &inner.kind {
+            ExprKind::Call { callee, args } => match (&callee.kind, args.as_slice()) {
+                (ExprKind::Name(f), [a])
+                    if a.name.is_none()
+                        && (self.name(f.sym).eq_ignore_ascii_case("REF")
+                            || self.name(f.sym).eq_ignore_ascii_case("ADR")) =>
+                {
+                    a.value.as_ref()
+                }
+                _ => None,
+            },
+            _ => None,
+        };
+        let Some(ExprKind::Name(x)) = arg.map(|a| &a.kind) else {
+            self.emit(Diagnostic::error(
+                Code::E039,
+                e.span,
+                format!(
+                    "the initial value of `{n}` (a {}) must be NULL or REF(variable)",
+                    self.type_name(ty)
+                ),
+            ));
+            return None;
+        };
+        if matches!(
+            self.init_section,
+            Some(crate::model::Section::Temp | crate::model::Section::InOut)
+        ) {
+            self.emit(Diagnostic::error(
+                Code::E039,
+                e.span,
+                format!("`{n}` is re-initialised at every call: REF(...) cannot be its initial value; assign it in the body"),
+            ));
+            return None;
+        }
+        let xn = self.name(x.sym);
+        let Some((s, i)) = self.find_slot(scope, x.sym) else {
+            self.emit(Diagnostic::error(
+                Code::E020,
+                x.span,
+                format!("unknown variable `{xn}` in the initial value of `{n}`"),
+            ));
+            return None;
+        };
+        let owner = self.scopes.get(s).map(|sc| sc.owner);
+        let fixed = match owner {
+            Some(super::Owner::Pou(pid)) => self.pous.get(pid.0 as usize).is_some_and(|p| {
+                matches!(
+                    p.ast.kind,
+                    automat_syntax::ast::PouKind::Program
+                        | automat_syntax::ast::PouKind::FunctionBlock
+                )
+            }),
+            Some(_) => true,
+            None => false,
+        };
+        let (xty, section) = match self.resolve_slot(s, i) {
+            super::fold::SlotInfo::Var { ty, section, .. } => (ty, section),
+            super::fold::SlotInfo::Cycle => {
+                self.emit(Diagnostic::error(
+                    Code::E039,
+                    x.span,
+                    format!("the initial value of `{n}` refers to `{xn}`, whose declaration depends on it"),
+                ));
+                return None;
+            }
+        };
+        let movable = matches!(
+            section,
+            crate::model::Section::Temp
+                | crate::model::Section::InOut
+                | crate::model::Section::Return
+        );
+        if !fixed || movable {
+            self.emit(Diagnostic::error(
+                Code::E039,
+                x.span,
+                format!("`{xn}` has no fixed address (a function's or VAR_TEMP variable, or a VAR_IN_OUT): REF({xn}) cannot be the initial value of `{n}`"),
+            ));
+            return None;
+        }
+        if xty != target && xty != TypeId::ERROR {
+            let (xt, tt) = (self.type_name(xty), self.type_name(target));
+            self.emit(Diagnostic::error(
+                Code::E039,
+                x.span,
+                format!("REF({xn}) refers to a {xt}, but `{n}` is a REF_TO {tt}"),
+            ));
+            return None;
+        }
+        Some(Init::Ref(Some(x.sym)))
+    }
+
     /// Checks and folds the initial value of `name` (a variable, member or
     /// type) of type `ty`. `None` after an error (reported).
     pub(super) fn check_init(
@@ -25,6 +145,9 @@ impl<'a> Builder<'a> {
             return None;
         }
         match init {
+            Initializer::Expr(e) if matches!(self.types.get(ty), TypeKind::Ref(_)) => {
+                self.ref_init(e, ty, scope, name)
+            }
             Initializer::Expr(e) => {
                 let t = self.fold(e, scope, Some(ty));
                 if t.ty == Ty::Error {

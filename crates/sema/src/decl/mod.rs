@@ -144,6 +144,9 @@ pub(crate) struct Builder<'a> {
     globals_by_name: FxHashMap<Symbol, Vec<(usize, u32)>>,
     configs: Vec<ConfigEntry<'a>>,
     depth: u32,
+    /// The section of the variable whose initial value is being checked
+    /// (a `REF(x)` initial value is refused in VAR_TEMP and VAR_IN_OUT).
+    init_section: Option<Section>,
 }
 
 /// The result of phase 1: the model without bodies checked, the
@@ -183,6 +186,7 @@ pub(crate) fn declare<'a>(
         globals_by_name: FxHashMap::default(),
         configs: Vec::new(),
         depth: 0,
+        init_section: None,
     };
     b.collect(units, stdlib);
     b.index_globals();

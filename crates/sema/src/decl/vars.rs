@@ -62,10 +62,12 @@ impl<'a> Builder<'a> {
             None => {
                 self.depth += 1;
                 let (ty, alias_init) = self.resolve_spec(&decl.ty, s, SpecCtx::default());
+                self.init_section = Some(Section::of(block.kind));
                 let init = match &decl.init {
                     Some(x) => self.check_init(x, ty, s, name),
                     None => alias_init,
                 };
+                self.init_section = None;
                 self.depth -= 1;
                 (ty, init.clone(), decl.init.is_some() && init.is_none())
             }
