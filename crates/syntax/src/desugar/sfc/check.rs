@@ -416,7 +416,8 @@ fn check_initial(
     diags: &mut Vec<Diagnostic>,
 ) {
     let steps = &flat.chart.steps;
-    for level in 0..=flat.macros.len() {
+    check_networks(flat, r, chart_span, diags);
+    for level in 1..=flat.macros.len() {
         let written = |i: usize| {
             flat.step_level.get(i) == Some(&level)
                 && flat.written_initial.get(i).copied().unwrap_or(false)
@@ -457,6 +458,97 @@ fn check_initial(
                         diags.push(
                             Diagnostic::error(Code::E124, s.name.span, what)
                                 .with_label(f.name.span, "the first initial step"),
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// E123, E124 for the chart itself: IEC 61131-3 lets a POU hold several
+/// SFC networks (steps linked through transitions; a macro-step's body
+/// belongs to its network), each with exactly one initial step.
+fn check_networks(flat: &Flat, r: &Resolved, chart_span: Span, diags: &mut Vec<Diagnostic>) {
+    let steps = &flat.chart.steps;
+    let n = steps.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let join = |parent: &mut Vec<usize>, a: usize, b: usize| {
+        if a < n && b < n {
+            let (ra, rb) = (root(parent, a), root(parent, b));
+            parent[ra.max(rb)] = ra.min(rb);
+        }
+    };
+    for (from, to) in r.from.iter().zip(&r.to) {
+        let mut linked = from.iter().chain(to);
+        if let Some(&first) = linked.next() {
+            for &other in linked {
+                join(&mut parent, first, other);
+            }
+        }
+    }
+    for (i, &level) in flat.step_level.iter().enumerate() {
+        if let Some(m) = level.checked_sub(1).and_then(|k| flat.macros.get(k)) {
+            join(&mut parent, i, m.step);
+        }
+    }
+    let top = |i: usize| flat.step_level.get(i) == Some(&0);
+    let written = |i: usize| top(i) && flat.written_initial.get(i).copied().unwrap_or(false);
+    // An initial step that is a duplicate (E122) is not reported again.
+    if (0..n).any(|i| written(i) && !r.step_ok[i]) {
+        return;
+    }
+    // Per network (by its root), in the order of its first step.
+    let mut networks: Vec<(usize, usize, Vec<usize>)> = Vec::new();
+    for i in (0..n).filter(|&i| top(i) && r.step_ok[i]) {
+        let root = root(&mut parent, i);
+        let at = match networks.iter().position(|(r0, ..)| *r0 == root) {
+            Some(k) => k,
+            None => {
+                networks.push((root, i, Vec::new()));
+                networks.len() - 1
+            }
+        };
+        if written(i) {
+            networks[at].2.push(i);
+        }
+    }
+    if networks.iter().all(|(.., initial)| initial.is_empty()) {
+        diags.push(Diagnostic::error(
+            Code::E123,
+            chart_span,
+            "this chart has no INITIAL_STEP",
+        ));
+        return;
+    }
+    for (_, first_step, initial) in &networks {
+        match initial.as_slice() {
+            [] => {
+                if let Some(s) = steps.get(*first_step) {
+                    diags.push(Diagnostic::error(
+                        Code::E123,
+                        s.name.span,
+                        "this SFC network (the steps linked to this one through transitions) has no INITIAL_STEP",
+                    ));
+                }
+            }
+            [first, rest @ ..] => {
+                for &i in rest {
+                    if let (Some(s), Some(f)) = (steps.get(i), steps.get(*first)) {
+                        diags.push(
+                            Diagnostic::error(
+                                Code::E124,
+                                s.name.span,
+                                "an SFC network has exactly one INITIAL_STEP (this step is linked through transitions to another initial step)",
+                            )
+                            .with_label(f.name.span, "the first initial step"),
                         );
                     }
                 }
