@@ -69,6 +69,11 @@ impl Gen<'_, '_> {
                 self.convert(v, x, conv_ty(to), e)
             }
             Trunc(to) => {
+                // The generic TRUNC: the integer type the checker chose.
+                let to = match want.or(rty).and_then(|t| self.elem(t)) {
+                    Some(r) if sig.name == "TRUNC" && r.is_int() => r,
+                    _ => to,
+                };
                 let x = arg(0)?;
                 let t = self.typed(x);
                 let from = self.concrete(t.ty, None, t.value.as_ref()).ok_or(Failed)?;

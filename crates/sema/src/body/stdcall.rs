@@ -148,6 +148,15 @@ impl<'m> Checker<'m> {
                 }
             }
         }
+        // The generic TRUNC (ANY_REAL -> ANY_INT) takes the integer type
+        // the context needs, as MatIEC does (DINT without a context).
+        if sig.name == "TRUNC" {
+            if let Some(to) =
+                expect.filter(|&t| self.model.types.elem(t).is_some_and(|e| e.is_int()))
+            {
+                return Typed::of(to);
+            }
+        }
         match sig.ret {
             RTy::Gen => t.map_or(Typed::ERROR, Typed::of),
             RTy::Elem(el) => Typed::elem(el),

@@ -30,6 +30,7 @@
 //! - [`crate::desugar_chart`] (`sfc::desugar_chart`): the same for a POU
 //!   whose `lang` is a chart built by an importer (macro-steps allowed).
 
+pub(crate) mod eno;
 pub(crate) mod il;
 pub(crate) mod oop;
 pub(crate) mod sfc;

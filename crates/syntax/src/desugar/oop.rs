@@ -39,6 +39,7 @@ use std::collections::{HashMap, HashSet};
 /// into plain items, appended to the unit that declared them; the classes
 /// and interfaces stay, marked `desugared` (later stages ignore them).
 pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Diagnostic> {
+    crate::desugar::eno::implicit_eno(units, interner);
     promote_bases(units);
     let mut classes: HashMap<Symbol, (usize, Class)> = HashMap::new();
     let mut itfs: HashMap<Symbol, (usize, Interface)> = HashMap::new();
