@@ -326,8 +326,11 @@ impl<'m> Layout<'m> {
         let mut edges = Vec::new();
         for (i, v) in p.vars.vars.iter().enumerate() {
             if v.edge.is_some() && v.section == Section::Input {
+                // Two hidden bytes: the last raw value (the edge memory)
+                // and the edge the body reads; the input itself keeps the
+                // raw value, so a call that does not give it keeps it.
                 edges.push((i as u32, narrow(off)));
-                off = off.saturating_add(1);
+                off = off.saturating_add(2);
             }
         }
         let syms = &self.model.syms;

@@ -264,7 +264,34 @@ impl<'c, 'a> Gen<'c, 'a> {
     }
 
     /// Where variable `idx` of the current POU lives (VAR_IN_OUT dereferenced).
+    /// A variable of this POU as its body sees it: an R_EDGE/F_EDGE input
+    /// is the edge the prologue computed (a hidden byte), not the raw
+    /// input the caller wrote.
     pub fn var_lv(&mut self, idx: u32, span: Span) -> Res<Lv> {
+        let edge = self
+            .cx
+            .layout
+            .pou(self.pou)
+            .edges
+            .iter()
+            .find(|(i, _)| *i == idx)
+            .map(|&(_, mem)| mem);
+        if let Some(mem) = edge {
+            let at = match self.frame {
+                Some(f) => Addr::abs(f + mem + 1),
+                None => Addr::this(mem + 1),
+            };
+            return Ok(Lv {
+                addr: at,
+                bit: None,
+                ty: automat_sema::types::TypeId::BOOL,
+            });
+        }
+        self.raw_var_lv(idx, span)
+    }
+
+    /// A variable of this POU where it is stored.
+    pub fn raw_var_lv(&mut self, idx: u32, span: Span) -> Res<Lv> {
         let model = self.cx.model;
         let pou = model.pou(self.pou).ok_or(Failed)?;
         let var = pou.vars.vars.get(idx as usize).ok_or(Failed)?;

@@ -1,7 +1,7 @@
 //! Statements and the POU entry (prologue re-initialising temporaries and
 //! function locals from the POU's template, body, epilogue).
 
-use super::{Gen, LoopCx, Res, Val, V};
+use super::{Gen, LoopCx, Res, V};
 use crate::cx::Cx;
 use crate::layout::Slot;
 use automat_ir::code::{Addr, Cmp, Func, Inst, IntOp, RegClass};
@@ -82,7 +82,7 @@ impl Gen<'_, '_> {
             let Some(var) = p.vars.vars.get(idx as usize) else {
                 continue;
             };
-            let Ok(lv) = self.var_lv(idx, var.span) else {
+            let Ok(lv) = self.raw_var_lv(idx, var.span) else {
                 continue;
             };
             let V::I(raw) = self.load(lv).v else { continue };
@@ -122,14 +122,15 @@ impl Gen<'_, '_> {
                 ty: automat_ir::code::MemTy::U8,
                 addr: m_at,
             });
-            let _ = self.store(
-                lv,
-                Val {
-                    v: V::I(e),
-                    ty: lv.ty,
-                },
-                var.span,
-            );
+            let edge_at = match self.frame {
+                Some(f) => Addr::abs(f + mem + 1),
+                None => Addr::this(mem + 1),
+            };
+            self.emit(Inst::Store {
+                src: e,
+                ty: automat_ir::code::MemTy::U8,
+                addr: edge_at,
+            });
         }
     }
 

@@ -337,6 +337,22 @@ impl Parser<'_> {
             return InstrKind::Error;
         }
         let operand = self.il_operand();
+        // `R ctr` on a CTU is its input R (IEC 61131-3, IL operators on
+        // function block inputs), not a reset of the instance.
+        if let ExprKind::Name(id) = &operand.kind {
+            let (set, word) = match op {
+                Op::R => (&self.il_fb_r, "R"),
+                Op::S => (&self.il_fb_s, "S"),
+                _ => (&Vec::new(), ""),
+            };
+            if set.contains(&id.sym) {
+                let input = Ident {
+                    sym: self.interner.intern(word),
+                    span: op_span,
+                };
+                return InstrKind::FbInput { input, fb: operand };
+            }
+        }
         if matches!(op, Op::St | Op::Stn | Op::S | Op::R) && !is_place(&operand) {
             let msg = format!("`{}` needs a variable to write", op.name());
             self.il_bad_operand(operand.span, &msg);
@@ -636,10 +652,36 @@ impl Parser<'_> {
         var_blocks: &mut Vec<crate::ast::VarBlock>,
     ) -> (Vec<crate::ast::Stmt>, crate::ast::Lang) {
         let mut hidden = Vec::new();
+        (self.il_fb_r, self.il_fb_s) = fb_input_vars(var_blocks, self.interner);
         let (body, out) = self.il_desugared(&[end], false, &mut hidden);
+        self.il_fb_r.clear();
+        self.il_fb_s.clear();
         if let Some(b) = crate::desugar::il::hidden_block(hidden) {
             var_blocks.push(b);
         }
         (out.stmts, crate::ast::Lang::Il(Box::new(body)))
     }
+}
+
+/// The variables of `blocks` declared as a standard function block with an
+/// input `R` (CTU, CTUD, SR), and with an input `S` (RS).
+fn fb_input_vars(
+    blocks: &[crate::ast::VarBlock],
+    interner: &automat_base::Interner,
+) -> (Vec<automat_base::Symbol>, Vec<automat_base::Symbol>) {
+    let (mut r, mut s) = (Vec::new(), Vec::new());
+    for d in blocks.iter().flat_map(|b| &b.decls) {
+        let crate::ast::TypeSpec::Named(t) = &d.ty else {
+            continue;
+        };
+        let ty = interner.name(t.sym).to_ascii_uppercase();
+        let into = match ty.as_str() {
+            "CTU" | "CTUD" | "SR" | "CTU_DINT" | "CTU_LINT" | "CTU_UDINT" | "CTU_ULINT"
+            | "CTUD_DINT" | "CTUD_LINT" | "CTUD_UDINT" | "CTUD_ULINT" => &mut r,
+            "RS" => &mut s,
+            _ => continue,
+        };
+        into.extend(d.names.iter().map(|n| n.sym));
+    }
+    (r, s)
 }

@@ -60,6 +60,12 @@ pub struct Parser<'a> {
     /// Inside a method, property or class: statement lists stop at their
     /// contextual closers (`END_METHOD`, ...).
     oop_depth: u32,
+    /// In an IL body: the variables declared as standard function blocks
+    /// with an input `R` (CTU, CTUD, SR) and with an input `S` (RS), so
+    /// that `R ctr` and `S ff` set those inputs as the other FB input
+    /// operators do, instead of resetting the instance itself.
+    il_fb_r: Vec<automat_base::Symbol>,
+    il_fb_s: Vec<automat_base::Symbol>,
 }
 
 /// Parses a lexed file into a [`SourceUnit`]; diagnostics are appended to `diags`.
@@ -85,6 +91,8 @@ pub fn parse_tokens(
         frames: Vec::new(),
         lex_error_ends: diags.iter().map(|d| d.span.end).collect(),
         oop_depth: 0,
+        il_fb_r: Vec::new(),
+        il_fb_s: Vec::new(),
     };
     p.lex_error_ends.sort_unstable();
     if p.toks.last().map(|t| t.tok) != Some(Tok::Eof) {
