@@ -338,7 +338,7 @@ codes! {
 
     // ---- Modbus (automat-fieldbus, `[modbus]` in automat.toml, docs/modbus.md) ----
     E340 => "invalid Modbus configuration",
-        "A `[modbus.server]`, `[[modbus.server.map]]`, `[[modbus.client]]` or block table of `automat.toml` has a key of the wrong form: an address that is not ADDR:PORT, a table that is not coils, discrete_inputs, input_registers or holding_registers, a Modbus address or count out of range (addresses 0..=65535, counts within the protocol's limits), a duration that does not parse, a block with neither or both of `to` and `from`, or two devices of one name.";
+        "A `[modbus.server]`, `[[modbus.server.map]]`, `[[modbus.client]]` or block table of `automat.toml` has a key of the wrong form: an address that is not ADDR:PORT, a table that is not coils, discrete_inputs, input_registers or holding_registers, a Modbus address or count out of range (addresses 0..=65535, counts within the protocol's limits), a duration that does not parse, a block with neither or both of `to` and `from`, two devices of one name, or a server on a non-loopback address with neither `allow` nor `read_only = true` (Modbus has no passwords: anyone who reaches it could write).";
     E341 => "Modbus entry names an unknown variable",
         "A Modbus map entry, a client block or a device's status variable names a path or direct address that does not exist in the compiled program.";
     E342 => "Modbus entry of the wrong type or size",

@@ -223,6 +223,15 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         }),
         (None, s) => s,
     };
+    // `--modbus-server` may move a checked server to another address.
+    if let Some(why) = modbus_server
+        .as_ref()
+        .and_then(|s| s.options.open_to_writes(s.map.read_only))
+    {
+        return Err(bad(format!(
+            "--modbus-server: {why}: list the clients in `[modbus.server] allow = [...]` or set `read_only = true` in automat.toml"
+        )));
+    }
     let modbus_clients = std::mem::take(&mut loaded.modbus.clients);
     if loaded.cycle_ns <= 0 {
         return Err(bad("--cycle-time must be longer than 0"));

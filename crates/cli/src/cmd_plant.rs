@@ -75,10 +75,14 @@ pub fn run(args: &PlantArgs) -> Outcome {
         Ok(a) => a,
         Err(e) => return bad(format!("--modbus-server: {e}")),
     };
-    let srv = match server::start(
-        Arc::clone(&dev) as Arc<dyn server::Device>,
-        server::Options::new(addr),
-    ) {
+    let options = server::Options::new(addr);
+    // A plant's actuators are written over Modbus: the same rule as a PLC.
+    if let Some(why) = options.open_to_writes(false) {
+        return bad(format!(
+            "--modbus-server: {why}: serve a plant on 127.0.0.1 (or a tunnel to it) only"
+        ));
+    }
+    let srv = match server::start(Arc::clone(&dev) as Arc<dyn server::Device>, options) {
         Ok(s) => s,
         Err(e) => return bad(e),
     };

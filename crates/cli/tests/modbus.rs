@@ -356,3 +356,34 @@ fn the_crane_runs_its_cycle_against_the_plant_over_modbus() {
     assert!(lines.iter().any(|l| l == "Ctrl.GS1.x = TRUE"), "{lines:?}");
     assert_eq!(plant.stop(), Some(0));
 }
+
+/// `--modbus-server` on another address than loopback is refused before
+/// anything runs: nothing would restrict who writes the PLC's outputs.
+#[test]
+fn a_modbus_server_open_to_every_host_is_refused() {
+    let crane = root().join("examples/crane");
+    let out = std::process::Command::new(bin())
+        .args([
+            "run",
+            &crane.to_string_lossy(),
+            "--modbus-server",
+            "0.0.0.0:0",
+        ])
+        .stdin(std::process::Stdio::null())
+        .output()
+        .expect("run");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("would take writes from any host (Modbus has no passwords)"),
+        "{err}"
+    );
+    let out = std::process::Command::new(bin())
+        .args(["plant", "crane", "--modbus-server", "0.0.0.0:0"])
+        .stdin(std::process::Stdio::null())
+        .output()
+        .expect("plant");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("serve a plant on 127.0.0.1"), "{err}");
+}

@@ -257,6 +257,13 @@ fn server_config(cx: &mut Ctx, s: RawServer) -> Option<ServerConfig> {
         Map::default()
     };
     map.read_only = s.read_only;
+    if let Some(why) = options.open_to_writes(map.read_only) {
+        cx.err(
+            Code::E340,
+            s.listen.span(),
+            format!("{why}: list the clients in `allow = [...]` or set `read_only = true`"),
+        );
+    }
     let mut taken: BTreeMap<(Table, u32), String> = BTreeMap::new();
     for e in &s.map {
         entry(cx, e, &mut map, &mut taken);

@@ -194,6 +194,21 @@ pub struct Options {
 }
 
 impl Options {
+    /// Why a server with these options must not start: Modbus has no
+    /// passwords, so a server reachable from other hosts that accepts
+    /// writes must at least name the clients it takes them from
+    /// (`allow`). Loopback, an allow list, or a read-only map is fine; the
+    /// caller adds the remedy that fits where the address came from.
+    pub fn open_to_writes(&self, read_only: bool) -> Option<String> {
+        if self.addr.ip().is_loopback() || !self.allow.is_empty() || read_only {
+            return None;
+        }
+        Some(format!(
+            "a Modbus server on {} would take writes from any host (Modbus has no passwords)",
+            self.addr
+        ))
+    }
+
     pub fn new(addr: SocketAddr) -> Options {
         Options {
             addr,
