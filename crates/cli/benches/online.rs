@@ -11,10 +11,9 @@
 //! 20, per phase).
 
 use automat_base::SourceMap;
-use automat_ir::{Fault, Program, ProgramInstance};
 use automat_online::Options;
 use automat_project::{bind, build, Sim};
-use automat_runtime::{ClockMode, Executor, SystemClock};
+use automat_runtime::{ClockMode, SystemClock};
 use automat_session::{Config, Parts, Session};
 use std::cell::RefCell;
 use std::path::Path;
@@ -24,49 +23,9 @@ use std::sync::atomic::AtomicBool;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-/// Records when each scan's first program starts, against PLC time.
-struct Probe {
-    inner: automat_jit::Jit,
-    epoch: Instant,
-    last: Option<i64>,
-    lateness: Arc<Mutex<Vec<(i64, i64)>>>,
-}
-
-impl Executor for Probe {
-    fn program(&self) -> &Program {
-        self.inner.program()
-    }
-    fn image(&self) -> &[u8] {
-        self.inner.image()
-    }
-    fn image_mut(&mut self) -> &mut [u8] {
-        self.inner.image_mut()
-    }
-    fn cold_start(&mut self) {
-        self.inner.cold_start()
-    }
-    fn run_program(&mut self, inst: &ProgramInstance, now_ns: i64) -> Result<(), Fault> {
-        if self.last != Some(now_ns) {
-            self.last = Some(now_ns);
-            let wall = self.epoch.elapsed().as_nanos() as i64;
-            if let Ok(mut l) = self.lateness.lock() {
-                l.push((now_ns, wall - now_ns));
-            }
-        }
-        self.inner.run_program(inst, now_ns)
-    }
-    fn interrupt(&self) -> automat_ir::Interrupt {
-        self.inner.interrupt()
-    }
-}
-
-fn percentile(sorted: &[i64], p: f64) -> i64 {
-    if sorted.is_empty() {
-        return 0;
-    }
-    let i = ((sorted.len() - 1) as f64 * p).round() as usize;
-    sorted[i.min(sorted.len() - 1)]
-}
+#[path = "support/probe.rs"]
+mod probe;
+use probe::{percentile, Probe};
 
 fn main() {
     let seconds: u64 = std::env::var("ONLINE_BENCH_SECONDS")
