@@ -166,7 +166,7 @@ codes! {
     E100 => "no current result",
         "An IL instruction uses the current result (ST, S, R, AND, ADD, a conditional jump, ...) where there is none: at the start of the instruction list or of a parenthesised group, or after an unconditional JMP, RET, CAL or FB input operator. Begin with `LD`.";
     E101 => "current result undefined after a label",
-        "A jump may reach a label with any current result, so after a label the current result is undefined: the first instruction after it must load a new one (`LD`, `LDN`, a formal function call) before using it.";
+        "An instruction right after a label uses the current result, so every way into the label must bring one: the line above (not after a CAL, or at the start of the list) and each jump to it (`JMPC` brings TRUE, `JMPCN` FALSE, `JMP` its own current result). Only a Boolean current result continues across a label; otherwise load a new one after the label (`LD`, `LDN`, a formal function call).";
     E102 => "missing IL operand",
         "The IL operator needs an operand on the same line (`LD x`, `JMP label`, `CAL fb`); an instruction ends at the end of its line.";
     E103 => "unexpected IL operand",

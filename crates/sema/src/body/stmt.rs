@@ -220,6 +220,13 @@ impl<'m> Checker<'m> {
             Fit::Mismatch => {
                 self.err(Code::E030, span, |c| {
                     let from = crate::names::value_desc(&c.model.types, c.interner, v);
+                    // The IL current result carried into a label (the hidden
+                    // BOOL of the IL lowering) is not a name the user wrote.
+                    if expr_text(c.interner, target).eq_ignore_ascii_case("__CRL") {
+                        return format!(
+                            "the current result ({from}) continues across a label, which only a BOOL current result can: store it with ST and load it again after the label"
+                        );
+                    }
                     format!(
                         "cannot assign {from} to `{}` of type {}{}",
                         expr_text(c.interner, target),

@@ -12,7 +12,7 @@
 //! | `PT t1` (FB input operators) | `t1(PT := cr);` |
 //! | `JMP L` / `JMPC L` / `JMPCN L` | `GOTO L` / `IF cr THEN GOTO L; END_IF` / `IF NOT cr ...` |
 //! | `RET` / `RETC` / `RETCN` | `RETURN` / `IF cr THEN RETURN; END_IF` / ... |
-//! | `L:` | `Label(L)`: the CR is undefined after it |
+//! | `L:` | `Label(L)`; a CR used right after it comes from `__CRL` (below) |
 //!
 //! Every generated node's span is the IL text it came from (an operator's
 //! node spans its line), so type errors of the CR come out of the checker
@@ -27,9 +27,17 @@
 //! it in the hidden BOOL variable `__CR` (declared in VAR_TEMP), since the
 //! instruction may change what the tree reads (`LD b` / `R b` / `S c`).
 //!
-//! Limits: `R x` always resets a BOOL `x` (to set the R input of a counter
-//! use `ST ctu.R` or `CAL ctu(R := ...)`; `LD` is never the CTD input
-//! operator). A function's result is what `ST <function name>` stored.
+//! The CR across a label: when the instruction after `L:` uses the CR, every
+//! way into `L` leaves it in the hidden BOOL `__CRL`: the line above falls
+//! through with `__CRL := cr`, `JMPC L` jumps with `__CRL := TRUE` (its
+//! condition held), `JMPCN L` with FALSE, `JMP L` with its CR. So a Boolean
+//! CR continues across a label as in ladder-like IL; a way in without a CR
+//! is E101, and a non-BOOL CR a type error at the line that brings it.
+//!
+//! Limits: `R x` / `S x` on a variable of a named non-elementary type are
+//! the function block input operators (`x(R := cr)`), so an alias of BOOL
+//! declared as a TYPE cannot be set with S/R (use `ST`); `LD` is never the
+//! CTD input operator. A function's result is what `ST <function name>` stored.
 //!
 //! Diagnostics: E100 (no current result), E101 (undefined after a label),
 //! E108 (statement-like instruction inside parentheses), E005 (a CR built
@@ -47,6 +55,10 @@ use automat_base::{Code, Diagnostic, Interner, Span, Symbol};
 /// The name of the hidden BOOL variable that keeps a condition for the
 /// instructions after a conditional one.
 pub const CR_VAR: &str = "__CR";
+
+/// The hidden BOOL variable that carries the CR into a label whose next
+/// instruction uses it.
+pub const LABEL_CR_VAR: &str = "__CRL";
 
 /// What desugaring an instruction list gives.
 pub struct IlOut {
@@ -69,10 +81,26 @@ pub fn desugar(
     interner: &mut Interner,
     diags: &mut Vec<Diagnostic>,
 ) -> IlOut {
+    // Labels whose instruction reads the CR (the ways into them carry it).
+    // (A label alone on its line labels an empty instruction: look past it.)
+    let instrs = &body.instrs;
+    let carried = (0..instrs.len())
+        .filter_map(|k| {
+            let l = instrs[k].label?;
+            let next = instrs[k..].iter().enumerate().find(|(j, i)| {
+                !matches!(i.kind, InstrKind::Nothing) || (*j > 0 && i.label.is_some())
+            });
+            match next {
+                Some((j, i)) if (j == 0 || i.label.is_none()) && reads_cr(i) => Some(l.sym),
+                _ => None,
+            }
+        })
+        .collect();
     let mut d = Ds {
         interner,
         diags,
         hidden,
+        carried,
     };
     let mut stmts = Vec::new();
     let cr = d.list(
@@ -104,8 +132,8 @@ enum Cr {
     /// An expression and the depth of its tree.
     Val(Expr, u32),
     None(Why),
-    /// Undefined after the label (its span).
-    AfterLabel(Ident),
+    /// Undefined after the label (its span) on the way in from above.
+    AfterLabel(Ident, Why),
     /// Unknown after an error (reported): uses stay silent.
     Poison,
 }
@@ -114,6 +142,8 @@ struct Ds<'a> {
     interner: &'a mut Interner,
     diags: &'a mut Vec<Diagnostic>,
     hidden: &'a mut Vec<VarDecl>,
+    /// Labels whose next instruction reads the CR.
+    carried: Vec<Symbol>,
 }
 
 fn mk(kind: ExprKind, span: Span) -> Expr {
@@ -172,6 +202,11 @@ fn uses_cr(instr: Option<&Instr>, want_result: bool) -> bool {
     if i.label.is_some() {
         return false;
     }
+    reads_cr(i)
+}
+
+/// Whether `i` reads the CR when it executes.
+fn reads_cr(i: &Instr) -> bool {
     match &i.kind {
         InstrKind::Simple { op, .. } => !matches!(op, Op::Ld | Op::Ldn),
         InstrKind::Group { .. } | InstrKind::FbInput { .. } => true,
@@ -228,8 +263,7 @@ impl Ds<'_> {
     ) -> Cr {
         for (k, i) in instrs.iter().enumerate() {
             if let Some(l) = i.label {
-                out.push(stmt(StmtKind::Label(l), l.span));
-                cr = Cr::AfterLabel(l);
+                cr = self.enter_label(l, cr, out);
             }
             let next_uses = uses_cr(instrs.get(k + 1), want_result || nested);
             if nested && !self.allowed_in_group(i) {
@@ -429,7 +463,39 @@ impl Ds<'_> {
             }
             InstrKind::Jump { when, label, .. } => {
                 let go = stmt(StmtKind::Goto(*label), span);
-                self.conditional(*when, cr, i, next_uses, go, Why::Jump, out)
+                if !self.carried.contains(&label.sym) {
+                    return self.conditional(*when, cr, i, next_uses, go, Why::Jump, out);
+                }
+                let keep = |d: &mut Self, v: Expr| {
+                    let var = d.hidden_bool(LABEL_CR_VAR, span);
+                    stmt(
+                        StmtKind::Assign {
+                            target: mk(ExprKind::Name(Ident { sym: var, span }), span),
+                            value: v,
+                        },
+                        span,
+                    )
+                };
+                if *when == When::Always {
+                    let Some((e, _)) = self.take(cr, i) else {
+                        return Cr::Poison;
+                    };
+                    out.push(keep(self, e));
+                    out.push(go);
+                    return Cr::None(Why::Jump);
+                }
+                let Some((c, d)) = self.take(cr, i) else {
+                    return Cr::Poison;
+                };
+                let (c, d) = self.freeze(c, d, next_uses, out);
+                let held = keep(self, bool_lit(*when == When::IfTrue, span));
+                out.push(if_then(
+                    c.clone(),
+                    *when == When::IfFalse,
+                    vec![held, go],
+                    span,
+                ));
+                Cr::Val(c, d)
             }
             InstrKind::Ret { when, .. } => {
                 let ret = stmt(StmtKind::Return, span);
@@ -509,16 +575,21 @@ impl Ds<'_> {
                 ));
                 None
             }
-            Cr::AfterLabel(l) => {
+            Cr::AfterLabel(l, why) => {
                 let name = op_name(i, self.interner);
                 let label = self.interner.name(l.sym).to_string();
+                let from = match why {
+                    Why::Start => "the start of the list",
+                    Why::Call => "a function block call",
+                    _ => "an instruction that leaves none",
+                };
                 self.diags.push(
                     Diagnostic::error(
                         Code::E101,
                         op_span(i),
-                        format!("`{name}` uses the current result, which is undefined after the label `{label}`: load one with LD first"),
+                        format!("`{name}` uses the current result after the label `{label}`, but the line above reaches the label without one (after {from}): load one with LD first"),
                     )
-                    .with_label(l.span, "a jump may arrive here with any current result"),
+                    .with_label(l.span, "the way in from the line above has no current result"),
                 );
                 None
             }
@@ -535,7 +606,7 @@ impl Ds<'_> {
         }
         let span = c.span;
         let var = Ident {
-            sym: self.hidden_bool(span),
+            sym: self.hidden_bool(CR_VAR, span),
             span,
         };
         let name = mk(ExprKind::Name(var), span);
@@ -549,9 +620,60 @@ impl Ds<'_> {
         (name, 1)
     }
 
-    /// The hidden BOOL variable, declared on first use.
-    fn hidden_bool(&mut self, span: Span) -> Symbol {
-        let sym = self.interner.intern(CR_VAR);
+    /// `L:`: the label statement, and the CR after it. When the next
+    /// instruction reads the CR, the way in from above stores it in
+    /// `__CRL` (jumps to `L` do the same) and the CR is that variable.
+    fn enter_label(&mut self, l: Ident, cr: Cr, out: &mut Vec<Stmt>) -> Cr {
+        if !self.carried.contains(&l.sym) {
+            out.push(stmt(StmtKind::Label(l), l.span));
+            return Cr::None(Why::Jump);
+        }
+        let var = self.interner.intern(LABEL_CR_VAR);
+        let name = mk(
+            ExprKind::Name(Ident {
+                sym: var,
+                span: l.span,
+            }),
+            l.span,
+        );
+        match cr {
+            Cr::Val(e, _) if is_non_bool_literal(&e) => {
+                self.diags.push(Diagnostic::error(
+                    Code::E101,
+                    e.span,
+                    format!(
+                        "only a BOOL current result continues across the label `{}`: store this one with ST and load it again after the label",
+                        self.interner.name(l.sym)
+                    ),
+                ));
+                out.push(stmt(StmtKind::Label(l), l.span));
+                return Cr::Poison;
+            }
+            Cr::Val(e, _) => {
+                let span = e.span;
+                out.push(stmt(
+                    StmtKind::Assign {
+                        target: name.clone(),
+                        value: e,
+                    },
+                    span,
+                ));
+            }
+            // Nothing falls through after an unconditional jump or return.
+            Cr::None(Why::Jump | Why::Ret) | Cr::Poison => {}
+            Cr::None(why) | Cr::AfterLabel(_, why) => {
+                out.push(stmt(StmtKind::Label(l), l.span));
+                return Cr::AfterLabel(l, why);
+            }
+        }
+        out.push(stmt(StmtKind::Label(l), l.span));
+        self.hidden_bool(LABEL_CR_VAR, l.span);
+        Cr::Val(name, 1)
+    }
+
+    /// The hidden BOOL variable `name`, declared on first use.
+    fn hidden_bool(&mut self, name: &str, span: Span) -> Symbol {
+        let sym = self.interner.intern(name);
         if !self
             .hidden
             .iter()
@@ -572,6 +694,12 @@ impl Ds<'_> {
         }
         sym
     }
+}
+
+/// A literal that is not a Boolean (such a CR cannot live in `__CRL`).
+fn is_non_bool_literal(e: &Expr) -> bool {
+    // (`0` and `1` are Boolean literals too.)
+    matches!(&e.kind, ExprKind::Literal(l) if !matches!(l.kind, LitKind::Bool(_) | LitKind::Int(0 | 1)))
 }
 
 /// `IF [NOT] c THEN body END_IF`

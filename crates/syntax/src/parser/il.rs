@@ -663,8 +663,8 @@ impl Parser<'_> {
     }
 }
 
-/// The variables of `blocks` declared as a standard function block with an
-/// input `R` (CTU, CTUD, SR), and with an input `S` (RS).
+/// The variables of `blocks` declared as a function block with an input `R`
+/// (CTU, CTUD, SR, user blocks), and with an input `S` (RS, user blocks).
 fn fb_input_vars(
     blocks: &[crate::ast::VarBlock],
     interner: &automat_base::Interner,
@@ -679,9 +679,68 @@ fn fb_input_vars(
             "CTU" | "CTUD" | "SR" | "CTU_DINT" | "CTU_LINT" | "CTU_UDINT" | "CTU_ULINT"
             | "CTUD_DINT" | "CTUD_LINT" | "CTUD_UDINT" | "CTUD_ULINT" => &mut r,
             "RS" => &mut s,
-            _ => continue,
+            // The other standard blocks have neither input; `S x` on an
+            // elementary variable (or an alias of one) is a set.
+            t if NOT_SET_RESET_FB.contains(&t) => continue,
+            _ => {
+                // A user function block (assumed: any other named type,
+                // since its declaration may be in another file): `S fb` /
+                // `R fb` set its input S / R, and the checker reports a
+                // block without that input.
+                r.extend(d.names.iter().map(|n| n.sym));
+                &mut s
+            }
         };
         into.extend(d.names.iter().map(|n| n.sym));
     }
     (r, s)
 }
+
+/// Named types that are not function blocks with an input S or R: the
+/// elementary types and the standard blocks without those inputs.
+const NOT_SET_RESET_FB: &[&str] = &[
+    "BOOL",
+    "SINT",
+    "INT",
+    "DINT",
+    "LINT",
+    "USINT",
+    "UINT",
+    "UDINT",
+    "ULINT",
+    "REAL",
+    "LREAL",
+    "BYTE",
+    "WORD",
+    "DWORD",
+    "LWORD",
+    "TIME",
+    "LTIME",
+    "DATE",
+    "LDATE",
+    "TIME_OF_DAY",
+    "TOD",
+    "LTOD",
+    "LTIME_OF_DAY",
+    "DATE_AND_TIME",
+    "DT",
+    "LDT",
+    "LDATE_AND_TIME",
+    "STRING",
+    "WSTRING",
+    "CHAR",
+    "WCHAR",
+    "TON",
+    "TOF",
+    "TP",
+    "TON_LTIME",
+    "TOF_LTIME",
+    "TP_LTIME",
+    "R_TRIG",
+    "F_TRIG",
+    "CTD",
+    "CTD_DINT",
+    "CTD_LINT",
+    "CTD_UDINT",
+    "CTD_ULINT",
+];
