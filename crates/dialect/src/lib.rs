@@ -179,7 +179,11 @@ pub fn parse_as_written(
             units.push(automat_plcopen::import(id, &file.text, interner).unit);
             continue;
         }
-        let pl7_text = if pl7 { pl7::text::rewrite(&file.text) } else { None };
+        let pl7_text = if pl7 {
+            pl7::text::rewrite(&file.text)
+        } else {
+            None
+        };
         let text = pl7_text.as_deref().unwrap_or(&file.text);
         let isa_text = if isagraf { boolact::text(text).0 } else { None };
         let text = isa_text.as_deref().unwrap_or(text);
