@@ -13,13 +13,21 @@ use axum::http::{HeaderMap, StatusCode};
 use axum::response::{IntoResponse, Response};
 use serde_json::{json, Value};
 
-/// The paths of the nodes of type `pou` (program and FB instances).
-fn instances(nodes: &[Node], pou: &str, out: &mut Vec<String>) {
+/// The paths of the instances of `pou`: FB instances of that type, and
+/// program instances (typed `PROGRAM` in the tree) holding every step of
+/// the chart as a `STEP` member.
+fn instances(nodes: &[Node], pou: &str, steps: &[&str], out: &mut Vec<String>) {
     for n in nodes {
-        if n.ty.eq_ignore_ascii_case(pou) {
+        let holds_steps = !steps.is_empty()
+            && steps.iter().all(|s| {
+                n.children
+                    .iter()
+                    .any(|c| c.ty == "STEP" && c.name.eq_ignore_ascii_case(s))
+            });
+        if n.ty.eq_ignore_ascii_case(pou) || (n.ty == "PROGRAM" && holds_steps) {
             out.push(n.path.clone());
         } else {
-            instances(&n.children, pou, out);
+            instances(&n.children, pou, steps, out);
         }
     }
 }
@@ -30,7 +38,8 @@ pub fn answer(charts: &[PouChart], tree: &[Node]) -> Value {
         .iter()
         .map(|c| {
             let mut at = Vec::new();
-            instances(tree, &c.pou, &mut at);
+            let steps: Vec<&str> = c.chart.steps.iter().map(|s| s.name.as_str()).collect();
+            instances(tree, &c.pou, &steps, &mut at);
             let mut v = serde_json::to_value(c).unwrap_or(Value::Null);
             v["instances"] = json!(at);
             v
