@@ -247,6 +247,18 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         opts.users = users(loaded.project.as_ref());
         opts.insecure = args.insecure;
         opts.tls = args.tls_cert.clone().zip(args.tls_key.clone());
+        // The charts as the compiler reads them, for the HMI.
+        opts.charts = match loaded.project.as_ref() {
+            Some(p) => {
+                let mut libs = p.libraries.clone();
+                libs.extend(args.libs.iter().cloned());
+                automat_project::charts::of_files(&p.sources, &libs)
+            }
+            None => crate::files::collect(&args.paths)
+                .and_then(|f| crate::files::load(&f))
+                .map(|map| automat_project::charts::of_sources(map, &args.libs))
+                .unwrap_or_default(),
+        };
         opts
     });
     // The live view, unless a server runs without a terminal (a service);

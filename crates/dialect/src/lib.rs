@@ -151,6 +151,47 @@ fn name_xml_elements(sources: &SourceMap, diags: &mut [Diagnostic]) {
     }
 }
 
+/// Every file of `sources` parsed after the dialects' text rewrites only
+/// (PL7 spellings, ISaGRAF `v;` associations), before any tree rewrite:
+/// the charts as written, for tools that draw them. FST files and the
+/// dialect libraries give empty units.
+pub fn parse_as_written(
+    sources: &SourceMap,
+    interner: &mut Interner,
+    dialects: &[Dialect],
+) -> Vec<SourceUnit> {
+    let pl7 = dialects.contains(&Dialect::Pl7);
+    let isagraf = dialects.contains(&Dialect::Isagraf);
+    let fst = dialects.contains(&Dialect::Fst);
+    let mut units = Vec::with_capacity(sources.len());
+    for (id, file) in sources.files() {
+        let lib = dialects
+            .iter()
+            .any(|d| d.library_file() == Some(file.name.as_str()));
+        if lib || (fst && fst::is_fst_file(&file.name)) {
+            units.push(SourceUnit {
+                file: id,
+                items: Vec::new(),
+            });
+            continue;
+        }
+        if automat_plcopen::is_plcopen_file(&file.name) {
+            units.push(automat_plcopen::import(id, &file.text, interner).unit);
+            continue;
+        }
+        let pl7_text = if pl7 {
+            pl7::text::rewrite(&file.text)
+        } else {
+            None
+        };
+        let text = pl7_text.as_deref().unwrap_or(&file.text);
+        let isa_text = if isagraf { boolact::text(text).0 } else { None };
+        let text = isa_text.as_deref().unwrap_or(text);
+        units.push(automat_syntax::parse(id, text, interner).unit);
+    }
+    units
+}
+
 /// Parses every file of `sources`, applies the rewrites of `dialects`, and
 /// checks the project; parse, rewrite and check diagnostics, sorted by file
 /// and position. `*.xml` files are PLCopen TC6 XML, read by

@@ -12,6 +12,7 @@
 
 pub mod api;
 pub mod auth;
+pub mod charts;
 pub mod listen;
 pub mod watch;
 
@@ -40,6 +41,8 @@ pub struct Options {
     pub users: Vec<User>,
     pub max_connections: usize,
     pub max_watchers: usize,
+    /// The SFC charts of the program (`GET /api/v1/charts`).
+    pub charts: Vec<automat_project::charts::PouChart>,
 }
 
 impl Options {
@@ -52,6 +55,7 @@ impl Options {
             users: Vec::new(),
             max_connections: 128,
             max_watchers: 32,
+            charts: Vec::new(),
         }
     }
 }
@@ -61,6 +65,8 @@ pub struct App {
     pub session: Arc<Session>,
     pub auth: Arc<auth::Auth>,
     pub watchers: Arc<Semaphore>,
+    /// The answer of `GET /api/v1/charts`.
+    pub charts: Arc<Option<serde_json::Value>>,
 }
 
 /// A running server; dropping it stops it.
@@ -95,6 +101,7 @@ pub fn router(app: App) -> Router {
         .route("/api/v1/control", post(api::control))
         .route("/api/v1/login", post(api::login))
         .route("/api/v1/watch", get(watch::watch))
+        .route("/api/v1/charts", get(charts::charts))
         .layer(DefaultBodyLimit::max(MAX_BODY))
         .with_state(app)
 }
@@ -125,7 +132,10 @@ pub fn start(session: Arc<Session>, opts: Options) -> Result<Server, String> {
         None => None,
     };
     let scheme = if tls.is_some() { "https" } else { "http" };
+    let tree = session.symbols("").unwrap_or_default();
+    let charts = Arc::new(Some(charts::answer(&opts.charts, &tree)));
     let app = App {
+        charts,
         session,
         auth: Arc::new(auth::Auth::new(opts.token.clone(), opts.users.clone())),
         watchers: Arc::new(Semaphore::new(opts.max_watchers.max(1))),

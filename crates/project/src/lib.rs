@@ -20,6 +20,7 @@
 
 pub mod bind;
 pub mod build;
+pub mod charts;
 pub mod exec;
 pub mod file;
 pub mod folder;
