@@ -8,6 +8,7 @@ pub mod codes;
 pub mod diag;
 pub mod intern;
 pub mod render;
+pub mod slc;
 pub mod source;
 pub mod span;
 
