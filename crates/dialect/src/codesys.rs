@@ -20,6 +20,17 @@ use automat_syntax::ast::{
 };
 use std::collections::HashMap;
 
+/// Whether a file's `(* *)` comments nest: CODESYS V2.3 writes the
+/// project's setting into each object of a text export as the marker
+/// `(* @NESTEDCOMMENTS := 'Yes' *)` (or `'No'`); the file's first marker
+/// decides. Without a marker they do not nest (the CODESYS default).
+pub fn nested_comments(text: &str) -> bool {
+    const MARK: &str = "(* @NESTEDCOMMENTS := '";
+    text.find(MARK)
+        .and_then(|i| text.get(i + MARK.len()..i + MARK.len() + 3))
+        .is_some_and(|v| v.eq_ignore_ascii_case("yes"))
+}
+
 /// Adds the implied VAR_EXTERNAL blocks to the user POUs of `units`.
 pub fn implicit_externals(units: &mut [SourceUnit], is_user: &dyn Fn(&SourceUnit) -> bool) {
     // name → (declaration to copy, constant)

@@ -197,7 +197,10 @@ pub fn check_sources(
     let mut negated = Vec::new();
     let fst = dialects.contains(&Dialect::Fst);
     let codesys = dialects.contains(&Dialect::Codesys);
-    let parse_opts = automat_syntax::Options { codesys };
+    let parse_opts = automat_syntax::Options {
+        codesys,
+        nested_comments: false,
+    };
     let check_opts = automat_sema::Options { codesys };
     if fst {
         diags.extend(fst::translate(sources).1);
@@ -236,7 +239,11 @@ pub fn check_sources(
         let parsed = if automat_plcopen::is_plcopen_file(&file.name) {
             automat_plcopen::import(id, &file.text, interner)
         } else {
-            automat_syntax::parse_with(id, text, interner, parse_opts)
+            let opts = automat_syntax::Options {
+                nested_comments: codesys && codesys::nested_comments(text),
+                ..parse_opts
+            };
+            automat_syntax::parse_with(id, text, interner, opts)
         };
         if lib {
             libs.push(id);

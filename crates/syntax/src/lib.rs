@@ -55,6 +55,9 @@ pub struct Options {
     /// nest, and the `;` after `END_IF`, `END_FOR`, `END_CASE`,
     /// `END_WHILE` and `END_REPEAT` may be left out.
     pub codesys: bool,
+    /// With `codesys`: the file's `(* *)` comments nest after all (a V2.3
+    /// export whose `(* @NESTEDCOMMENTS := 'Yes' *)` marker says so).
+    pub nested_comments: bool,
 }
 
 /// Parses one Structured Text file. Never panics, never fails: errors are
@@ -81,7 +84,13 @@ pub fn parse_with(file: FileId, text: &str, interner: &mut Interner, opts: Optio
     } else {
         text
     };
-    let lexed = lexer::lex_with(file, text, interner, &mut diagnostics, !opts.codesys);
+    let lexed = lexer::lex_with(
+        file,
+        text,
+        interner,
+        &mut diagnostics,
+        !opts.codesys || opts.nested_comments,
+    );
     if let (true, Some((start, end))) = (opts.codesys, lexed.first_pragma) {
         let n = lexed.pragmas;
         let others = match n {

@@ -164,7 +164,9 @@ impl<'m> Checker<'m> {
                         )
                     });
                     if ops::binary_in(&self.model.types, *op, &l, &r, true).is_some() {
-                        self.note_codesys("CODESYS allows arithmetic on BYTE, WORD, DWORD and LWORD");
+                        self.note_codesys(
+                            "CODESYS allows arithmetic on BYTE, WORD, DWORD and LWORD",
+                        );
                     }
                     return Typed::ERROR;
                 };

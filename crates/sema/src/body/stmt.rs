@@ -426,7 +426,8 @@ impl<'m> Checker<'m> {
 /// types (the narrowing ones; widening ones are implicit everywhere), of a
 /// typed value (literals keep their range checks).
 pub(crate) fn narrowing(types: &crate::types::TypeTable, v: &Typed, to: TypeId) -> bool {
-    let numeric = |e: crate::types::Elem| e.is_num() || (e.is_bit() && e != crate::types::Elem::Bool);
+    let numeric =
+        |e: crate::types::Elem| e.is_num() || (e.is_bit() && e != crate::types::Elem::Bool);
     let from = match v.ty {
         Ty::Of(id) => types.elem(id),
         _ => None,
