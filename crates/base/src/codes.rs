@@ -365,6 +365,10 @@ codes! {
         "An ACTION of the chart is associated with no step, so it never runs.";
     W150 => "section ignored",
         "ISaGRAF dialect: the project has a CONFIGURATION, whose tasks decide which programs run and in what order; `{section ...}` pragmas are then ignored.";
+    W160 => "pragma ignored",
+        "CODESYS dialect: `{attribute ...}`, `{flag ...}` and the other pragmas of a file are accepted and not interpreted (automat has no such settings); the warning is given once per file, at its first pragma, with their number.";
+    W161 => "implicit narrowing conversion",
+        "CODESYS dialect: a value is assigned or passed where a narrower type is expected (DINT to INT, WORD to BYTE, REAL to INT, LREAL to REAL). CODESYS converts it implicitly, as the `X_TO_Y` conversion function would (integers and bit strings keep their low bits, reals are rounded); automat does the same and warns, since the value may not fit. Without the dialect this is error E030.";
 }
 
 /// The code table as Markdown: the content of `docs/diagnostics.md`

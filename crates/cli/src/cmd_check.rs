@@ -31,8 +31,9 @@ pub struct CheckArgs {
     #[arg(long, conflicts_with = "deny_warnings")]
     no_warnings: bool,
     /// Use a vendor dialect (repeatable): `isagraf` (ISaGRAF helper blocks,
-    /// TIMER, sections, child charts) or `pl7` (%Xi steps, %S/%SW system
-    /// objects, P1/N1/P0). See docs/vendor-dialects.md.
+    /// TIMER, sections, child charts), `pl7` (%Xi steps, %S/%SW system
+    /// objects, P1/N1/P0), `fst` (Festo STL) or `codesys` (CODESYS V2.3/V3
+    /// and TwinCAT code). See docs/vendor-dialects.md.
     #[arg(long = "lib", value_name = "NAME")]
     libs: Vec<String>,
 }

@@ -112,8 +112,9 @@ pub struct RunArgs {
     #[arg(long)]
     pub(crate) stats: bool,
     /// Use a vendor dialect (repeatable): `isagraf` (ISaGRAF helper blocks,
-    /// TIMER, sections, child charts) or `pl7` (%Xi steps, %S/%SW system
-    /// objects, P1/N1/P0). See docs/vendor-dialects.md.
+    /// TIMER, sections, child charts), `pl7` (%Xi steps, %S/%SW system
+    /// objects, P1/N1/P0), `fst` (Festo STL) or `codesys` (CODESYS V2.3/V3
+    /// and TwinCAT code). See docs/vendor-dialects.md.
     #[arg(long = "lib", value_name = "NAME")]
     pub(crate) libs: Vec<String>,
     /// The backend: `jit` (native code; a program it cannot compile runs on

@@ -35,6 +35,7 @@
 mod boolact;
 mod build;
 mod children;
+mod codesys;
 mod empty;
 mod fst;
 mod pl7;
@@ -58,10 +59,20 @@ pub enum Dialect {
     /// Festo FST statement list: `P<n>.stl` programs, `B<n>.stl` modules,
     /// `allocation.txt` (module `fst`).
     Fst,
+    /// CODESYS V2.3/V3 and TwinCAT: VAR_INPUT assignment, bit-string
+    /// arithmetic, globals without VAR_EXTERNAL, `END_IF` without `;`,
+    /// non-nesting comments, pragmas ignored, implicit narrowing (module
+    /// `codesys`).
+    Codesys,
 }
 
 impl Dialect {
-    pub const ALL: &'static [Dialect] = &[Dialect::Isagraf, Dialect::Pl7, Dialect::Fst];
+    pub const ALL: &'static [Dialect] = &[
+        Dialect::Isagraf,
+        Dialect::Pl7,
+        Dialect::Fst,
+        Dialect::Codesys,
+    ];
 
     /// The dialect a `--lib` / `libraries` name selects (any case).
     pub fn from_name(name: &str) -> Option<Dialect> {
@@ -77,6 +88,7 @@ impl Dialect {
             Dialect::Isagraf => "isagraf",
             Dialect::Pl7 => "pl7",
             Dialect::Fst => "fst",
+            Dialect::Codesys => "codesys",
         }
     }
 
@@ -85,7 +97,7 @@ impl Dialect {
     pub fn library_file(self) -> Option<&'static str> {
         match self {
             Dialect::Isagraf => Some("<library isagraf>/isagraf.st"),
-            Dialect::Pl7 | Dialect::Fst => None,
+            Dialect::Pl7 | Dialect::Fst | Dialect::Codesys => None,
         }
     }
 
@@ -93,7 +105,7 @@ impl Dialect {
     pub fn library_source(self) -> Option<&'static str> {
         match self {
             Dialect::Isagraf => Some(include_str!("../lib/isagraf.st")),
-            Dialect::Pl7 | Dialect::Fst => None,
+            Dialect::Pl7 | Dialect::Fst | Dialect::Codesys => None,
         }
     }
 }
@@ -102,6 +114,15 @@ impl Dialect {
 /// `allocation.txt`) rather than a Structured Text source?
 pub fn is_fst_file(name: &str) -> bool {
     fst::is_fst_file(name)
+}
+
+/// Is `name` a CODESYS V2.3 text export (`*.exp`), read as Structured
+/// Text when a folder is given (the `(* @... *)` markers are comments)?
+pub fn is_export_file(name: &str) -> bool {
+    std::path::Path::new(name)
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("exp"))
 }
 
 /// Parses a list of dialect names (`--lib a --lib b`, `libraries = [...]`).
@@ -216,6 +237,12 @@ pub fn check_sources(
     let isagraf = dialects.contains(&Dialect::Isagraf);
     let mut negated = Vec::new();
     let fst = dialects.contains(&Dialect::Fst);
+    let codesys = dialects.contains(&Dialect::Codesys);
+    let parse_opts = automat_syntax::Options {
+        codesys,
+        nested_comments: false,
+    };
+    let check_opts = automat_sema::Options { codesys };
     if fst {
         diags.extend(fst::translate(sources).1);
     }
@@ -253,7 +280,11 @@ pub fn check_sources(
         let parsed = if automat_plcopen::is_plcopen_file(&file.name) {
             automat_plcopen::import(id, &file.text, interner)
         } else {
-            automat_syntax::parse(id, text, interner)
+            let opts = automat_syntax::Options {
+                nested_comments: codesys && codesys::nested_comments(text),
+                ..parse_opts
+            };
+            automat_syntax::parse_with(id, text, interner, opts)
         };
         if lib {
             libs.push(id);
@@ -274,7 +305,7 @@ pub fn check_sources(
     drop_shadowed_library_pous(&mut units, &libs);
     let is_user = |u: &SourceUnit| !libs.contains(&u.file);
     let mut marks = Vec::new();
-    for unit in units.iter().filter(|u| is_user(u)) {
+    for unit in units.iter().filter(|u| is_user(u) && (isagraf || pl7)) {
         marks.push((
             unit.file,
             pragma::sections(unit.file, &sources.get(unit.file).text),
@@ -282,7 +313,9 @@ pub fn check_sources(
     }
     // ISaGRAF and PL7 charts may have several initial steps (IEC allows
     // one, E124): each is active at the start and after a reset.
-    diags.retain(|d| d.code != Code::E124);
+    if isagraf || pl7 {
+        diags.retain(|d| d.code != Code::E124);
+    }
     let mut has_children = false;
     if isagraf {
         // Boolean actions are edge writes; on the chart code as the
@@ -320,9 +353,15 @@ pub fn check_sources(
         // parser's "missing condition" error there is void.
         drop_errors_within(&mut diags, &open);
     }
-    sections::synthesize(&mut units, &marks, has_children, interner, &mut diags);
+    if codesys {
+        // Globals of global variable lists need no VAR_EXTERNAL.
+        codesys::implicit_externals(&mut units, &is_user);
+    }
+    if isagraf || pl7 {
+        sections::synthesize(&mut units, &marks, has_children, interner, &mut diags);
+    }
     diags.extend(automat_syntax::desugar_oop(&mut units, interner));
-    let mut analysis = automat_sema::check(&units, interner);
+    let mut analysis = automat_sema::check_with(&units, interner, check_opts);
     diags.append(&mut analysis.diagnostics);
     diags.sort_by_key(|d: &Diagnostic| (d.span.file, d.span.start, d.span.end));
     name_xml_elements(sources, &mut diags);

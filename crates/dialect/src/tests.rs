@@ -18,8 +18,12 @@ fn names_parse_in_any_case_once_each() {
         parse_names(&["ISaGRAF", "pl7", "isagraf"]),
         Ok(vec![Dialect::Isagraf, Dialect::Pl7])
     );
-    let err = parse_names(&["codesys"]).unwrap_err();
-    assert_eq!(err, "unknown library `codesys` (known: isagraf, pl7, fst)");
+    assert_eq!(parse_names(&["CODESYS"]), Ok(vec![Dialect::Codesys]));
+    let err = parse_names(&["twincat"]).unwrap_err();
+    assert_eq!(
+        err,
+        "unknown library `twincat` (known: isagraf, pl7, fst, codesys)"
+    );
 }
 
 #[test]
@@ -84,4 +88,68 @@ fn bare_associations_need_the_isagraf_dialect() {
     let text = "PROGRAM p VAR v : BOOL; END_VAR\n INITIAL_STEP s:\n    v;\n END_STEP\nEND_PROGRAM";
     assert_eq!(codes(text, Dialect::Isagraf), [Code::W121]);
     assert_ne!(codes(text, Dialect::Pl7), []);
+}
+
+/// Each CODESYS extension: clean with `--lib codesys`, an error in strict
+/// IEC mode whose note names `--lib codesys`.
+#[test]
+fn codesys_extensions_are_errors_without_the_dialect() {
+    let cases = [
+        (
+            "FUNCTION_BLOCK f VAR_INPUT n : INT; END_VAR n := n + 1; END_FUNCTION_BLOCK",
+            Code::E041,
+        ),
+        (
+            "PROGRAM p VAR w : WORD; END_VAR w := w + 1; END_PROGRAM",
+            Code::E031,
+        ),
+        (
+            "VAR_GLOBAL g : INT; END_VAR\nPROGRAM p g := 1; END_PROGRAM",
+            Code::E020,
+        ),
+        (
+            "PROGRAM p VAR x : INT; END_VAR IF x = 0 THEN x := 1; END_IF\nx := 2; END_PROGRAM",
+            Code::E005,
+        ),
+        (
+            "PROGRAM p VAR d : DINT; i : INT; END_VAR i := d; END_PROGRAM",
+            Code::E030,
+        ),
+    ];
+    for (text, code) in cases {
+        let mut map = SourceMap::new();
+        map.add("t.st", text);
+        let mut interner = Interner::new();
+        let (_, strict) = check_sources(&map, &mut interner, &[]);
+        let d = strict
+            .diagnostics
+            .iter()
+            .find(|d| d.code == code)
+            .unwrap_or_else(|| panic!("{text}: no {code:?} in {:?}", strict.diagnostics));
+        assert!(
+            d.notes.iter().any(|n| n.contains("--lib codesys")),
+            "{text}: {:?}",
+            d.notes
+        );
+        let got = codes(text, Dialect::Codesys);
+        let want: &[Code] = if code == Code::E030 {
+            &[Code::W161]
+        } else {
+            &[]
+        };
+        assert_eq!(got, want, "{text}");
+    }
+}
+
+#[test]
+fn codesys_comments_and_pragmas() {
+    // Non-nesting: the first `*)` closes, so `x := 1;` is code.
+    let text = "PROGRAM p VAR x : INT; END_VAR (* a (* b *) x := 1; END_PROGRAM";
+    assert_eq!(codes(text, Dialect::Codesys), []);
+    assert!(codes(text, Dialect::Isagraf).contains(&Code::E002));
+    // A V2.3 export that says its comments nest.
+    let nested = "(* @NESTEDCOMMENTS := 'Yes' *)\nPROGRAM p VAR x : INT; END_VAR (* a (* b *) c *) x := 1; END_PROGRAM";
+    assert_eq!(codes(nested, Dialect::Codesys), []);
+    let pragmas = "{attribute 'a'}\nPROGRAM p {flag off} VAR x : INT; END_VAR x := 1; END_PROGRAM";
+    assert_eq!(codes(pragmas, Dialect::Codesys), [Code::W160]);
 }

@@ -86,14 +86,31 @@ impl Analysis {
     }
 }
 
+/// What a dialect relaxes in checking (the default is strict IEC 61131-3).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Options {
+    /// CODESYS / TwinCAT rules (`--lib codesys`): a POU may assign its own
+    /// VAR_INPUTs; `+ - * / MOD` apply to BYTE/WORD/DWORD/LWORD (the
+    /// result has the wider operand's type, wrapping); an implicit narrowing
+    /// between integer, bit-string and real types is a warning (W161)
+    /// instead of an error.
+    pub codesys: bool,
+}
+
 /// Checks a whole project (all files of it). Never panics on any AST.
 pub fn check(units: &[SourceUnit], interner: &mut Interner) -> Analysis {
+    check_with(units, interner, Options::default())
+}
+
+/// [`check`] with a dialect's [`Options`].
+pub fn check_with(units: &[SourceUnit], interner: &mut Interner, opts: Options) -> Analysis {
     let syms = names::Syms::new(interner);
     let std_unit = automat_syntax::parse(stdlib::STD_FILE, stdlib::FB_SOURCE, interner).unit;
     let interner: &Interner = interner;
     let declared = decl::declare(units, &std_unit, interner, syms);
     let mut diags = declared.diags;
     let mut model = declared.model;
+    model.codesys = opts.codesys;
     {
         let mut ck = Checker::new(&model, interner, Scope::Pou(PouId(0)), false);
         for (i, p) in model.pous.iter().enumerate() {

@@ -220,6 +220,9 @@ pub struct Model {
     pub stdlib: SourceUnit,
     /// Well-known names.
     pub syms: Syms,
+    /// The CODESYS dialect's checking rules (`--lib codesys`, see
+    /// [`crate::Options`]); lowering reads types through the same flag.
+    pub codesys: bool,
 }
 
 impl Model {

@@ -140,6 +140,42 @@ fn is_compare(op: BinaryOp) -> bool {
 /// The result type of `l op r`; `None` when the operator is not defined for
 /// these operands (E031).
 pub fn binary(types: &TypeTable, op: BinaryOp, l: &Typed, r: &Typed) -> Option<Ty> {
+    binary_in(types, op, l, r, false)
+}
+
+/// [`binary`]; `codesys`: `+ - * / MOD` also apply to BYTE, WORD, DWORD
+/// and LWORD (the result is the wider operand's type and wraps as it).
+pub fn binary_in(
+    types: &TypeTable,
+    op: BinaryOp,
+    l: &Typed,
+    r: &Typed,
+    codesys: bool,
+) -> Option<Ty> {
+    let strict = binary_strict(types, op, l, r);
+    if strict.is_some()
+        || !codesys
+        || !matches!(
+            op,
+            BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div | BinaryOp::Mod
+        )
+    {
+        return strict;
+    }
+    let word = |e: Elem| e.is_bit() && e != Elem::Bool;
+    match (shape(types, l), shape(types, r)) {
+        (Shape::Elem(a), Shape::Elem(b)) if word(a) && word(b) => lub(a, b).map(Ty::elem),
+        (Shape::Elem(a), s @ Shape::Int(_)) if word(a) => {
+            adapt(s, a).and_then(|b| lub(a, b)).map(Ty::elem)
+        }
+        (s @ Shape::Int(_), Shape::Elem(b)) if word(b) => {
+            adapt(s, b).and_then(|a| lub(a, b)).map(Ty::elem)
+        }
+        _ => None,
+    }
+}
+
+fn binary_strict(types: &TypeTable, op: BinaryOp, l: &Typed, r: &Typed) -> Option<Ty> {
     use BinaryOp::*;
     let (ls, rs) = (shape(types, l), shape(types, r));
     match (ls, rs) {

@@ -242,7 +242,7 @@ fn is_plcopen_code(code: Code) -> bool {
 /// `isagraf_*` / `pl7_*` projects are checked with their dialect on by
 /// `crates/dialect/tests/corpus.rs`, not here.
 fn is_vendor_project(name: &str) -> bool {
-    name.starts_with("isagraf_") || name.starts_with("pl7_")
+    name.starts_with("isagraf_") || name.starts_with("pl7_") || name.starts_with("codesys_")
 }
 
 fn is_st(p: &Path) -> bool {

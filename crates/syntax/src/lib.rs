@@ -47,10 +47,28 @@ pub struct Parsed {
 /// Spans are 32-bit byte offsets: text past this is not parsed.
 const MAX_LEN: usize = u32::MAX as usize - 1;
 
+/// What a dialect changes in how text is read (the default is strict IEC
+/// 61131-3).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Options {
+    /// CODESYS / TwinCAT text (`--lib codesys`): `(* *)` comments do not
+    /// nest, and the `;` after `END_IF`, `END_FOR`, `END_CASE`,
+    /// `END_WHILE` and `END_REPEAT` may be left out.
+    pub codesys: bool,
+    /// With `codesys`: the file's `(* *)` comments nest after all (a V2.3
+    /// export whose `(* @NESTEDCOMMENTS := 'Yes' *)` marker says so).
+    pub nested_comments: bool,
+}
+
 /// Parses one Structured Text file. Never panics, never fails: errors are
 /// returned as diagnostics (codes E001–E007) next to the tree of what parsed,
 /// sorted by position.
 pub fn parse(file: FileId, text: &str, interner: &mut Interner) -> Parsed {
+    parse_with(file, text, interner, Options::default())
+}
+
+/// [`parse`] with a dialect's [`Options`].
+pub fn parse_with(file: FileId, text: &str, interner: &mut Interner, opts: Options) -> Parsed {
     let mut diagnostics = Vec::new();
     let text = if text.len() > MAX_LEN {
         let mut cut = MAX_LEN;
@@ -66,8 +84,30 @@ pub fn parse(file: FileId, text: &str, interner: &mut Interner) -> Parsed {
     } else {
         text
     };
-    let lexed = lexer::lex(file, text, interner, &mut diagnostics);
-    let unit = parser::parse_tokens(file, text, lexed, interner, &mut diagnostics);
+    let lexed = lexer::lex_with(
+        file,
+        text,
+        interner,
+        &mut diagnostics,
+        !opts.codesys || opts.nested_comments,
+    );
+    if let (true, Some((start, end))) = (opts.codesys, lexed.first_pragma) {
+        let n = lexed.pragmas;
+        let others = match n {
+            1 => String::new(),
+            2 => " (and 1 more in this file)".to_string(),
+            _ => format!(" (and {} more in this file)", n - 1),
+        };
+        diagnostics.push(
+            Diagnostic::warning(
+                Code::W160,
+                Span::new(file, start, end),
+                format!("pragma ignored{others}"),
+            )
+            .with_note("automat does not interpret CODESYS attributes and pragmas; the code is read as if they were absent"),
+        );
+    }
+    let unit = parser::parse_tokens(file, text, lexed, interner, &mut diagnostics, opts);
     diagnostics.sort_by_key(|d| d.span.start);
     Parsed { unit, diagnostics }
 }

@@ -3,7 +3,7 @@
 //! reach: CONSTANT (E040), the POU's own VAR_INPUT (E041), an instance's
 //! output or something that is no variable (E042).
 
-use super::{Access, Checker, Named, MAX_EXPR_DEPTH};
+use super::{Access, Checker, Named, Scope, MAX_EXPR_DEPTH};
 use crate::decl::location::{size_bits, size_elem};
 use crate::lattice::int_fits;
 use crate::model::Section;
@@ -153,7 +153,8 @@ impl<'m> Checker<'m> {
                     let r = self.expr(rhs, hint);
                     (l, r)
                 };
-                let Some(ty) = ops::binary(&self.model.types, *op, &l, &r) else {
+                let Some(ty) = ops::binary_in(&self.model.types, *op, &l, &r, self.model.codesys)
+                else {
                     self.err(Code::E031, e.span, |c| {
                         format!(
                             "operator `{}` is not defined for {} and {}",
@@ -162,6 +163,11 @@ impl<'m> Checker<'m> {
                             c.tyname(r.ty)
                         )
                     });
+                    if ops::binary_in(&self.model.types, *op, &l, &r, true).is_some() {
+                        self.note_codesys(
+                            "CODESYS allows arithmetic on BYTE, WORD, DWORD and LWORD",
+                        );
+                    }
                     return Typed::ERROR;
                 };
                 let folded = match (&l.value, &r.value) {
@@ -337,6 +343,11 @@ impl<'m> Checker<'m> {
                     c.var_hint(id.sym)
                 )
             });
+            if matches!(self.scope, Scope::Pou(_))
+                && self.model.globals.get(id.sym).is_some_and(|g| !g.constant)
+            {
+                self.note_codesys("CODESYS makes the global variables of a global variable list visible in every POU");
+            }
         } else {
             self.err(Code::E026, id.span, |c| c.what_is(id.sym, &named));
         }
@@ -356,6 +367,10 @@ impl<'m> Checker<'m> {
                 format!("`{}` is a constant and cannot be assigned", c.name(v.name))
             });
         } else if own && v.section == Section::Input {
+            if self.model.codesys {
+                // CODESYS: an input is a local copy the body may change.
+                return;
+            }
             self.err(Code::E041, span, |c| {
                 let pou = c.pou().map_or("", |p| c.name(p.name));
                 format!(
@@ -363,6 +378,7 @@ impl<'m> Checker<'m> {
                     c.name(v.name)
                 )
             });
+            self.note_codesys("CODESYS lets a POU assign its own VAR_INPUT");
         } else if access == Access::ForVar && (!own || v.section == Section::External) {
             self.err(Code::E062, span, |c| {
                 format!(

@@ -176,6 +176,16 @@ impl<'m> Checker<'m> {
         }
     }
 
+    /// Adds to the last diagnostic the note that `--lib codesys` accepts
+    /// what it reports (`what`: the CODESYS rule).
+    pub(crate) fn note_codesys(&mut self, what: &str) {
+        if let Some(d) = self.diags.last_mut() {
+            d.notes.push(format!(
+                "{what}: check with `--lib codesys` (or `libraries = [\"codesys\"]` in automat.toml) to read CODESYS code"
+            ));
+        }
+    }
+
     /// Emits a diagnostic with labels or notes, built only when someone listens.
     pub(crate) fn diag(&mut self, make: impl FnOnce(&Self) -> Diagnostic) {
         if !self.silent {

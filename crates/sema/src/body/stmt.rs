@@ -217,7 +217,18 @@ impl<'m> Checker<'m> {
                     )
                 });
             }
+            Fit::Mismatch if self.model.codesys && narrowing(&self.model.types, v, to) => {
+                self.warn(Code::W161, span, |c| {
+                    let from = crate::names::value_desc(&c.model.types, c.interner, v);
+                    format!(
+                        "{from} is converted implicitly to {} for `{}`: the value may not fit",
+                        c.type_name(to),
+                        expr_text(c.interner, target)
+                    )
+                });
+            }
             Fit::Mismatch => {
+                let narrow = narrowing(&self.model.types, v, to);
                 self.err(Code::E030, span, |c| {
                     let from = crate::names::value_desc(&c.model.types, c.interner, v);
                     // The IL current result carried into a label (the hidden
@@ -234,6 +245,9 @@ impl<'m> Checker<'m> {
                         c.conversion_hint(v.ty, to)
                     )
                 });
+                if narrow {
+                    self.note_codesys("CODESYS converts such a value implicitly (warning W161)");
+                }
             }
         }
     }
@@ -412,4 +426,18 @@ impl<'m> Checker<'m> {
         }
         self.loop_body(body);
     }
+}
+
+/// Whether `v` → `to` is a conversion CODESYS makes implicitly although the
+/// standard does not: between two integer, bit-string (not BOOL) or real
+/// types (the narrowing ones; widening ones are implicit everywhere), of a
+/// typed value (literals keep their range checks).
+pub(crate) fn narrowing(types: &crate::types::TypeTable, v: &Typed, to: TypeId) -> bool {
+    let numeric =
+        |e: crate::types::Elem| e.is_num() || (e.is_bit() && e != crate::types::Elem::Bool);
+    let from = match v.ty {
+        Ty::Of(id) => types.elem(id),
+        _ => None,
+    };
+    matches!((from, types.elem(to)), (Some(f), Some(t)) if numeric(f) && numeric(t))
 }

@@ -396,6 +396,7 @@ impl<'a> Builder<'a> {
                 items: Vec::new(),
             },
             syms: self.syms,
+            codesys: false,
         };
         let mut diags = self.diags;
         diags.extend(cycles::instance_cycles(&model, self.interner));

@@ -21,6 +21,9 @@ pub struct Lexed {
     pub toks: Vec<Token>,
     /// Decoded literals, indexed by [`Tok::Lit`].
     pub lits: Vec<Literal>,
+    /// The `{ ... }` pragmas skipped: how many, and the first one's bytes.
+    pub pragmas: u32,
+    pub first_pragma: Option<(u32, u32)>,
 }
 
 /// The longest keyword or time/date prefix is 18 bytes (`END_FUNCTION_BLOCK`).
@@ -33,7 +36,22 @@ pub fn lex(
     interner: &mut Interner,
     diags: &mut Vec<Diagnostic>,
 ) -> Lexed {
+    lex_with(file, text, interner, diags, true)
+}
+
+/// [`lex`], choosing whether `(* *)` comments nest (IEC: they do; CODESYS:
+/// the first `*)` ends the comment).
+pub fn lex_with(
+    file: FileId,
+    text: &str,
+    interner: &mut Interner,
+    diags: &mut Vec<Diagnostic>,
+    nest_comments: bool,
+) -> Lexed {
     let mut lx = Lexer {
+        nest_comments,
+        pragmas: 0,
+        first_pragma: None,
         text,
         b: text.as_bytes(),
         pos: 0,
@@ -52,10 +70,17 @@ pub fn lex(
     Lexed {
         toks: lx.toks,
         lits: lx.lits,
+        pragmas: lx.pragmas,
+        first_pragma: lx.first_pragma,
     }
 }
 
 pub(crate) struct Lexer<'a> {
+    /// Whether `(*` inside a `(* *)` comment opens a nested one.
+    nest_comments: bool,
+    /// Pragmas skipped so far, and the first one's bytes.
+    pragmas: u32,
+    first_pragma: Option<(u32, u32)>,
     text: &'a str,
     b: &'a [u8],
     pos: usize,

@@ -23,7 +23,8 @@ impl Lexer<'_> {
         }
     }
 
-    /// `(* ... *)`; comments of this kind nest: `(* a (* b *) c *)`.
+    /// `(* ... *)`; comments of this kind nest: `(* a (* b *) c *)`, unless
+    /// the lexer was asked for CODESYS comments, which end at the first `*)`.
     fn nested_comment(&mut self) {
         let start = self.pos;
         let mut depth = 0usize;
@@ -31,7 +32,7 @@ impl Lexer<'_> {
         let len = self.b.len();
         while i < len {
             match (self.b[i], self.at(i + 1)) {
-                (b'(', b'*') => {
+                (b'(', b'*') if self.nest_comments || depth == 0 => {
                     depth += 1;
                     i += 2;
                 }
@@ -87,7 +88,13 @@ impl Lexer<'_> {
         let start = self.pos;
         let rest = &self.b[start..];
         match rest.iter().position(|&c| c == b'}') {
-            Some(i) => self.pos = start + i + 1,
+            Some(i) => {
+                self.pos = start + i + 1;
+                self.pragmas = self.pragmas.saturating_add(1);
+                if self.first_pragma.is_none() {
+                    self.first_pragma = Some((start as u32, self.pos as u32));
+                }
+            }
             None => {
                 self.pos = self.b.len();
                 self.error(

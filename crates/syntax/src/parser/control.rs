@@ -53,7 +53,20 @@ impl Parser<'_> {
     fn close(&mut self, end: Kw, opener: Token) -> u32 {
         if self.eat_kw(end) {
             let stop = self.prev_end;
+            if self.opts.codesys && self.peek() != Tok::Semi {
+                // CODESYS accepts `END_IF` without its `;`.
+                return stop;
+            }
+            let before = self.diags.len();
             self.end_stmt(&format!("after `{}`", end.name()));
+            if self.diags.len() > before && self.newline_before_cur() {
+                if let Some(d) = self.diags.pop() {
+                    self.diags.push(d.with_note(format!(
+                        "CODESYS accepts `{}` without `;`: check with `--lib codesys` (or `libraries = [\"codesys\"]` in automat.toml) to read CODESYS code",
+                        end.name()
+                    )));
+                }
+            }
             return stop;
         }
         self.unclosed_stmt(end, opener);

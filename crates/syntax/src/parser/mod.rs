@@ -66,6 +66,8 @@ pub struct Parser<'a> {
     /// operators do, instead of resetting the instance itself.
     il_fb_r: Vec<automat_base::Symbol>,
     il_fb_s: Vec<automat_base::Symbol>,
+    /// The dialect's reading rules (`--lib codesys`).
+    opts: crate::Options,
 }
 
 /// Parses a lexed file into a [`SourceUnit`]; diagnostics are appended to `diags`.
@@ -75,8 +77,10 @@ pub fn parse_tokens(
     lexed: Lexed,
     interner: &mut Interner,
     diags: &mut Vec<Diagnostic>,
+    opts: crate::Options,
 ) -> SourceUnit {
     let mut p = Parser {
+        opts,
         src,
         file,
         toks: lexed.toks,

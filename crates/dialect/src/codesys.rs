@@ -1,0 +1,139 @@
+//! CODESYS V2.3/V3 and TwinCAT (`--lib codesys`): the rewrites of the tree.
+//! The other CODESYS rules are options of the parser
+//! (`automat_syntax::Options::codesys`: non-nesting `(* *)`, `END_IF`
+//! without `;`, W160 for pragmas) and of the checker
+//! (`automat_sema::Options::codesys`: VAR_INPUT assignment, arithmetic on
+//! bit strings, W161 for implicit narrowing).
+//!
+//! Here: a global variable of a global variable list (`VAR_GLOBAL` outside
+//! any configuration) is visible in every POU without VAR_EXTERNAL. Each
+//! POU whose body names such a global, and declares no variable of that
+//! name, gets the VAR_EXTERNAL declaration CODESYS implies: the global's
+//! name and type, no initial value, CONSTANT when the global is.
+//! The generated block carries the span of the first use, so an error in
+//! it points at code the user wrote.
+
+use crate::walk::{self, Visitor};
+use automat_base::{Span, Symbol};
+use automat_syntax::ast::{
+    Body, Expr, ExprKind, Item, Retain, SourceUnit, VarBlock, VarDecl, VarKind,
+};
+use std::collections::HashMap;
+
+/// Whether a file's `(* *)` comments nest: CODESYS V2.3 writes the
+/// project's setting into each object of a text export as the marker
+/// `(* @NESTEDCOMMENTS := 'Yes' *)` (or `'No'`); the file's first marker
+/// decides. Without a marker they do not nest (the CODESYS default).
+pub fn nested_comments(text: &str) -> bool {
+    const MARK: &str = "(* @NESTEDCOMMENTS := '";
+    text.find(MARK)
+        .and_then(|i| text.get(i + MARK.len()..i + MARK.len() + 3))
+        .is_some_and(|v| v.eq_ignore_ascii_case("yes"))
+}
+
+/// Adds the implied VAR_EXTERNAL blocks to the user POUs of `units`.
+pub fn implicit_externals(units: &mut [SourceUnit], is_user: &dyn Fn(&SourceUnit) -> bool) {
+    // name → (declaration to copy, constant)
+    let mut globals: HashMap<Symbol, (VarDecl, bool)> = HashMap::new();
+    for unit in units.iter() {
+        for item in &unit.items {
+            if let Item::Globals(b) = item {
+                for d in &b.decls {
+                    for n in &d.names {
+                        globals.entry(n.sym).or_insert_with(|| {
+                            let mut one = d.clone();
+                            one.names = vec![*n];
+                            one.init = None;
+                            one.location = None;
+                            (one, b.constant)
+                        });
+                    }
+                }
+            }
+        }
+    }
+    if globals.is_empty() {
+        return;
+    }
+    for unit in units.iter_mut().filter(|u| is_user(u)) {
+        for item in &mut unit.items {
+            let Item::Pou(pou) = item else { continue };
+            let declared: Vec<Symbol> = pou
+                .var_blocks
+                .iter()
+                .flat_map(|b| b.decls.iter())
+                .flat_map(|d| d.names.iter().map(|n| n.sym))
+                .chain(std::iter::once(pou.name.sym))
+                .collect();
+            let mut uses = Uses {
+                globals: &globals,
+                declared: &declared,
+                found: Vec::new(),
+            };
+            let Body::St(stmts) = &mut pou.body;
+            walk::stmts(stmts, &mut uses);
+            let found = uses.found;
+            for constant in [false, true] {
+                let decls: Vec<VarDecl> = found
+                    .iter()
+                    .filter_map(|(sym, span)| {
+                        let (d, c) = globals.get(sym)?;
+                        (*c == constant).then(|| {
+                            let mut d = d.clone();
+                            d.span = *span;
+                            if let Some(n) = d.names.first_mut() {
+                                n.span = *span;
+                            }
+                            d
+                        })
+                    })
+                    .collect();
+                if let Some(first) = decls.first() {
+                    let span = first.span;
+                    pou.var_blocks.push(VarBlock {
+                        kind: VarKind::External,
+                        constant,
+                        retain: Retain::Unspecified,
+                        decls,
+                        span,
+                    });
+                }
+            }
+        }
+    }
+}
+
+/// Collects the globals a body names (each once, at its first use).
+struct Uses<'a> {
+    globals: &'a HashMap<Symbol, (VarDecl, bool)>,
+    declared: &'a [Symbol],
+    found: Vec<(Symbol, Span)>,
+}
+
+impl Visitor for Uses<'_> {
+    // Member names (`inst.member`) are not expressions: only the base's
+    // name is seen.
+    fn expr(&mut self, e: &mut Expr) {
+        match &e.kind {
+            ExprKind::Name(id) => self.note(id.sym, id.span),
+            // A call of a global FB instance: `gTimer(IN := x);`.
+            ExprKind::Call { callee, .. } => {
+                if let ExprKind::Name(id) = &callee.kind {
+                    self.note(id.sym, id.span);
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+impl Uses<'_> {
+    fn note(&mut self, sym: Symbol, span: Span) {
+        if self.globals.contains_key(&sym)
+            && !self.declared.contains(&sym)
+            && !self.found.iter().any(|(s, _)| *s == sym)
+        {
+            self.found.push((sym, span));
+        }
+    }
+}
