@@ -31,11 +31,11 @@ fn check_needs_the_dialect_and_refuses_unknown_ones() {
         Some(0)
     );
     assert_eq!(automat(&["check", path(&mixer)]).status.code(), Some(1));
-    let bad = automat(&["check", "--lib", "codesys", path(&mixer)]);
+    let bad = automat(&["check", "--lib", "siemens", path(&mixer)]);
     assert_eq!(bad.status.code(), Some(2));
     assert_eq!(
         String::from_utf8_lossy(&bad.stderr),
-        "error: --lib: unknown library `codesys` (known: isagraf, pl7, fst)\n"
+        "error: --lib: unknown library `siemens` (known: isagraf, pl7, fst, codesys)\n"
     );
 }
 
