@@ -133,7 +133,7 @@ pub fn start(session: Arc<Session>, opts: Options) -> Result<Server, String> {
     };
     let scheme = if tls.is_some() { "https" } else { "http" };
     let tree = session.symbols("").unwrap_or_default();
-    let charts = Arc::new(Some(charts::answer(&opts.charts, &tree)));
+    let charts = Arc::new(Some(charts::answer(&opts.charts, session.program(), &tree)));
     let app = App {
         charts,
         session,

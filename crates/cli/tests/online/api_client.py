@@ -67,9 +67,33 @@ def expect(name, r, status, error_part=None):
     check(name, ok, f"{r.status_code} {body}")
 
 
+def charts_contract(eng, anon):
+    """GET /api/v1/charts: the crane's ISaGRAF chart as the compiler reads it."""
+    expect("charts without a token: 401", anon.get("/api/v1/charts"), 401)
+    r = eng.get("/api/v1/charts")
+    check("charts: 200", r.status_code == 200, f"{r.status_code} {r.text}")
+    charts = r.json()["charts"] if r.status_code == 200 else []
+    check("charts: one chart, POU Crane, run by instance Ctrl",
+          [(c["pou"].lower(), c["instances"]) for c in charts] == [("crane", ["Ctrl"])], charts)
+    if not charts:
+        return
+    chart = charts[0]["chart"]
+    steps = [(s["name"].upper(), s["initial"]) for s in chart["steps"]]
+    check("charts: the 8 steps GS1..GS8, GS1 initial",
+          steps == [(f"GS{i}", i == 1) for i in range(1, 9)], steps)
+    cycle = [(t["from"], t["to"]) for t in chart["transitions"]]
+    want = [([f"GS{i}"], [f"GS{i % 8 + 1}"]) for i in range(1, 9)]
+    check("charts: 8 transitions closing the cycle GS1 -> GS2 ... GS8 -> GS1",
+          [([f.upper() for f in a], [t.upper() for t in b]) for a, b in cycle] == want, cycle)
+    dwell = [t["condition"] for t in chart["transitions"] if [f.upper() for f in t["from"]] == ["GS5"]]
+    check("charts: the dwell transition's condition is the source text",
+          dwell == ["GS5.t >= DWELL_TIME"], dwell)
+
+
 def exact(base, token):
     eng = Api(base, token)
     anon = Api(base, None)
+    charts_contract(eng, anon)
 
     # Authentication.
     expect("no token: 401", anon.get("/api/v1/status"), 401, "credentials")

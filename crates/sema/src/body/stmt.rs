@@ -233,7 +233,7 @@ impl<'m> Checker<'m> {
                     let from = crate::names::value_desc(&c.model.types, c.interner, v);
                     // The IL current result carried into a label (the hidden
                     // BOOL of the IL lowering) is not a name the user wrote.
-                    if expr_text(c.interner, target).eq_ignore_ascii_case("__CRL") {
+                    if expr_text(c.interner, target).eq_ignore_ascii_case(automat_syntax::LABEL_CR_VAR) {
                         return format!(
                             "the current result ({from}) continues across a label, which only a BOOL current result can: store it with ST and load it again after the label"
                         );
