@@ -7,6 +7,7 @@ against a real-time run for the robustness checks.
     api_client.py exact URL TOKEN       # the contract, with exact values
     api_client.py robust URL TOKEN      # hostile clients while the PLC runs
     api_client.py tls URL TOKEN CERT    # HTTPS and WSS with the server's certificate
+    api_client.py fst URL TOKEN         # FST online status (festo-distribution-stl)
 
 Users of the exact run (made by the harness with `automat passwd`):
 viewer `ada` / `viewer-pass`, operator `otto` / `operator-pass`.
@@ -326,10 +327,42 @@ def tls(base, token, cert):
         check("plain HTTP is not served", True)
 
 
+def fst(base, token):
+    """FST online status (issue: Festo STL, point 7) on the MPS distribution
+    station in STL: each program's RUN state and active step, and the
+    operands by their FST names and their symbols, as FST's online display."""
+    eng = Api(base, token)
+    eng.step(100)
+    v = eng.read("P0.run", "P1.run", "P1.step", "I0.1", "CylBack", "O0.3", "ArmToMag", "TP1")
+    check("fst: P0 and P1 run, P1 waits in step `wait`, operands by name and symbol",
+          v == {"P0.run": "TRUE", "P1.run": "TRUE", "P1.step": "__FST_P1_STEPS#wait",
+                "I0.1": "TRUE", "CylBack": "TRUE", "O0.3": "FALSE", "ArmToMag": "FALSE",
+                "TP1": "20"}, v)
+    tree = eng.get("/api/v1/symbols", prefix="P1").json()["symbols"]
+    kids = [(c["name"].lower(), c["writable"]) for c in tree[0]["children"]] if tree else []
+    check("fst: the symbol tree lists P1 with its run and step, read-only",
+          kids == [("run", False), ("step", False)], tree)
+    # START pressed through a force on its FST operand, released 200 ms later.
+    r = eng.post("/api/v1/force", {"path": "I1.0", "value": "TRUE"})
+    expect("fst: force I1.0 (START)", r, 200)
+    eng.step(20)
+    r = eng.post("/api/v1/unforce", {"path": "I1.0"})
+    expect("fst: unforce I1.0", r, 200)
+    eng.step(5)
+    v = eng.read("P1.step", "EjectOut", "O0.0", "START")
+    check("fst: after START, P1 is in step `push` and extends the cylinder",
+          v == {"P1.step": "__FST_P1_STEPS#push", "EjectOut": "TRUE", "O0.0": "TRUE",
+                "START": "FALSE"}, v)
+    r = eng.post("/api/v1/write", {"path": "P1.run", "value": "FALSE"})
+    expect("fst: a program's run state is not written from outside: 409", r, 409)
+
+
 def main():
     mode, base, token = sys.argv[1:4]
     if mode == "exact":
         exact(base, token)
+    elif mode == "fst":
+        fst(base, token)
     elif mode == "tls":
         tls(base, token, sys.argv[4])
     else:
