@@ -13,8 +13,8 @@
 
 use crate::force::{Boxed, ForceTable, Forcing, Shifted};
 use crate::{
-    Command, Config, Control, CycleStats, Error, Final, Parts, Request, RetainSaves, Shared, Sink,
-    Snapshot, State,
+    Command, Config, Control, CycleStats, End, Error, Final, Parts, Request, RetainSaves, Shared,
+    Sink, Snapshot, State,
 };
 use automat_ir::Program;
 use automat_project::{PlantExec, Sim};
@@ -485,6 +485,22 @@ impl ScanObserver for Observer<'_> {
     }
 }
 
+/// A session that ended before its first scan (`error`).
+fn failed(shared: &Shared, ready: &Sender<Result<(), String>>, e: String) -> Final {
+    let _ = ready.send(Err(e.clone()));
+    Final {
+        image: Vec::new(),
+        snapshot: Arc::clone(&*shared.snapshot.lock().unwrap_or_else(|p| p.into_inner())),
+        error: Some(e),
+        fault: None,
+        retain: None,
+        stats: Stats::default(),
+        end: End::Error,
+    }
+}
+
+/// The scan thread of a [`crate::Session`]: enters real time, builds the
+/// parts there, runs until the session is shut down.
 pub(crate) fn main(
     program: Arc<Program>,
     config: Config,
@@ -494,37 +510,46 @@ pub(crate) fn main(
     ready: Sender<Result<(), String>>,
 ) -> Final {
     if let Some(rt) = &config.realtime {
-        match automat_runtime::realtime::enter(rt) {
-            Ok(()) => {}
-            Err(e) => {
-                let _ = ready.send(Err(e.clone()));
-                return Final {
-                    image: Vec::new(),
-                    snapshot: Arc::clone(
-                        &*shared.snapshot.lock().unwrap_or_else(|p| p.into_inner()),
-                    ),
-                    error: Some(e),
-                    fault: None,
-                    retain: None,
-                    stats: Stats::default(),
-                };
-            }
+        if let Err(e) = automat_runtime::realtime::enter(rt) {
+            return failed(&shared, &ready, e);
         }
     }
-    let parts = match build() {
-        Ok(p) => p,
-        Err(e) => {
-            let _ = ready.send(Err(e.clone()));
-            return Final {
-                image: Vec::new(),
-                snapshot: Arc::clone(&*shared.snapshot.lock().unwrap_or_else(|p| p.into_inner())),
-                error: Some(e),
-                fault: None,
-                retain: None,
-                stats: Stats::default(),
-            };
+    match build() {
+        Ok(parts) => run(program, config, parts, Limit::Unbounded, rx, shared, ready),
+        Err(e) => failed(&shared, &ready, e),
+    }
+}
+
+/// A batch run on the calling thread ([`crate::run_here`]).
+pub(crate) fn here(
+    program: Arc<Program>,
+    config: Config,
+    parts: Parts,
+    limit: Limit,
+    rx: Receiver<Request>,
+    shared: Arc<Shared>,
+) -> Final {
+    let (ready, _) = std::sync::mpsc::channel();
+    if let Some(rt) = &config.realtime {
+        if let Err(e) = automat_runtime::realtime::enter(rt) {
+            return failed(&shared, &ready, e);
         }
-    };
+    }
+    run(program, config, parts, limit, rx, shared, ready)
+}
+
+/// The scan loop of a session, on the thread that calls it, until `limit`,
+/// a stop or the end of the session.
+#[allow(clippy::too_many_arguments)]
+fn run(
+    program: Arc<Program>,
+    config: Config,
+    parts: Parts,
+    limit: Limit,
+    rx: Receiver<Request>,
+    shared: Arc<Shared>,
+    ready: Sender<Result<(), String>>,
+) -> Final {
     let Parts {
         exec,
         sim,
@@ -620,10 +645,12 @@ pub(crate) fn main(
     let cfg = RunConfig {
         cycle_time_ns: config.cycle_time_ns,
         clock: config.clock,
-        limit: Limit::Unbounded,
+        limit,
     };
     let stop = Arc::clone(&config.stop);
     let mut error = None;
+    // Stopped unless a limit, a fault or an error says otherwise.
+    let mut end = End::Stopped;
     loop {
         if core.restart.take().is_some() {
             if let Some(s) = &sim {
@@ -656,10 +683,12 @@ pub(crate) fn main(
         match report {
             Err(e) => {
                 error = Some(e);
+                end = End::Error;
                 break;
             }
             Ok(r) => match r.end {
                 RunEnd::Fault(f) => {
+                    end = End::Fault;
                     if let Some(s) = &sim {
                         s.borrow_mut().safe_state(exec.image());
                     }
@@ -711,23 +740,34 @@ pub(crate) fn main(
                 }
                 RunEnd::Observer(e) => {
                     error = Some(e);
+                    end = End::Observer;
                     break;
                 }
                 RunEnd::Stopped => {
+                    end = End::Stopped;
                     // The outputs are in the safe state: the plant is told.
                     if let Some(s) = &sim {
                         s.borrow_mut().safe_state(exec.image());
                     }
                     break;
                 }
-                RunEnd::Limit | RunEnd::TimeExhausted => break,
+                RunEnd::Limit | RunEnd::TimeExhausted => {
+                    end = End::Limit;
+                    break;
+                }
             },
         }
     }
-    finish(core, &exec, error, has_retain)
+    finish(core, &exec, error, has_retain, end)
 }
 
-fn finish(mut core: Core, exec: &impl Executor, error: Option<String>, has_retain: bool) -> Final {
+fn finish(
+    mut core: Core,
+    exec: &impl Executor,
+    error: Option<String>,
+    has_retain: bool,
+    end: End,
+) -> Final {
     // The last end-of-scan snapshot, after the writer thread is done.
     let last = core.keeper.finish();
     let retain = has_retain.then(|| RetainSaves {
@@ -767,5 +807,6 @@ fn finish(mut core: Core, exec: &impl Executor, error: Option<String>, has_retai
             .flatten(),
         retain,
         stats: std::mem::take(&mut core.totals),
+        end,
     }
 }
