@@ -493,6 +493,7 @@ fn failed(shared: &Shared, ready: &Sender<Result<(), String>>, e: String) -> Fin
         snapshot: Arc::clone(&*shared.snapshot.lock().unwrap_or_else(|p| p.into_inner())),
         error: Some(e),
         fault: None,
+        fault_report: None,
         retain: None,
         stats: Stats::default(),
         end: End::Error,
@@ -651,6 +652,7 @@ fn run(
     let mut error = None;
     // Stopped unless a limit, a fault or an error says otherwise.
     let mut end = End::Stopped;
+    let mut last_fault: Option<automat_runtime::scan::FaultReport> = None;
     loop {
         if core.restart.take().is_some() {
             if let Some(s) = &sim {
@@ -689,6 +691,10 @@ fn run(
             Ok(r) => match r.end {
                 RunEnd::Fault(f) => {
                     end = End::Fault;
+                    last_fault = Some(automat_runtime::scan::FaultReport {
+                        plc_time_ns: f.plc_time_ns.saturating_add(core.offset.get()),
+                        ..(*f).clone()
+                    });
                     if let Some(s) = &sim {
                         s.borrow_mut().safe_state(exec.image());
                     }
@@ -758,7 +764,7 @@ fn run(
             },
         }
     }
-    finish(core, &exec, error, has_retain, end)
+    finish(core, &exec, error, has_retain, (end, last_fault))
 }
 
 fn finish(
@@ -766,7 +772,7 @@ fn finish(
     exec: &impl Executor,
     error: Option<String>,
     has_retain: bool,
-    end: End,
+    (end, last_fault): (End, Option<automat_runtime::scan::FaultReport>),
 ) -> Final {
     // The last end-of-scan snapshot, after the writer thread is done.
     let last = core.keeper.finish();
@@ -804,6 +810,9 @@ fn finish(
         error,
         fault: matches!(core.state, State::Fault { .. })
             .then(|| core.fault.take())
+            .flatten(),
+        fault_report: matches!(core.state, State::Fault { .. })
+            .then_some(last_fault)
             .flatten(),
         retain,
         stats: std::mem::take(&mut core.totals),

@@ -232,6 +232,9 @@ pub struct Final {
     /// The fault the session ended in, as the runtime reports it
     /// (`file:line:col: fault in POU: message (task …, PLC time …)`).
     pub fault: Option<String>,
+    /// The same fault as the runtime reported it (its kind and site), for
+    /// harnesses that compare them.
+    pub fault_report: Option<automat_runtime::scan::FaultReport>,
     /// The RETAIN saves (`None` without a RETAIN file).
     pub retain: Option<RetainSaves>,
     /// Scan statistics of the whole session (every run between stops).
