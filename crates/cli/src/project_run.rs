@@ -132,7 +132,11 @@ struct Loaded {
     plant: Box<dyn Plant>,
 }
 
-fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
+/// The project file read and its program compiled with the command line's
+/// `--program`, `--lib` and `--watchdog`, `[tasks]` applied and `[modbus]`
+/// checked (its errors are the project's in every run, though only a
+/// real-time run opens a socket): what every run of a project starts from.
+pub(crate) fn compile_project(args: &RunArgs, toml: &Path) -> Result<Compiled, Outcome> {
     let mut map = SourceMap::new();
     let project = automat_project::load(toml, &mut map).map_err(|d| fail(&map, &d))?;
     for w in &project.warnings {
@@ -156,11 +160,34 @@ fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
         }
     };
     automat_project::tasks::apply(&project.tasks, &mut program).map_err(|d| fail(&map, &d))?;
-    // `[modbus]` is checked in every run (its errors are the project's),
-    // though a virtual-clock run opens no socket and exchanges nothing.
-    automat_fieldbus::config::load(&map.get(project.file).text, project.file, &program)
-        .map_err(|d| fail(&map, &d))?;
+    let modbus =
+        automat_fieldbus::config::load(&map.get(project.file).text, project.file, &program)
+            .map_err(|d| fail(&map, &d))?;
     crate::engines::default_watchdog(&mut program, args.watchdog);
+    Ok(Compiled {
+        map,
+        project,
+        program,
+        modbus,
+    })
+}
+
+/// A project ready to run ([`compile_project`]).
+pub(crate) struct Compiled {
+    pub map: SourceMap,
+    pub project: Project,
+    pub program: Program,
+    /// `[modbus]`, checked against the program.
+    pub modbus: automat_fieldbus::config::Config,
+}
+
+fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
+    let Compiled {
+        map,
+        project,
+        program,
+        ..
+    } = compile_project(args, toml)?;
     // Without [plant] the program runs against no plant.
     let plant = project.new_plant().map_err(|d| fail(&map, &d))?;
     Ok(Loaded {
