@@ -164,9 +164,18 @@ impl<'m> Checker<'m> {
                         )
                     });
                     if ops::binary_in(&self.model.types, *op, &l, &r, true).is_some() {
-                        self.note_codesys(
-                            "CODESYS allows arithmetic on BYTE, WORD, DWORD and LWORD",
-                        );
+                        let pointer = |t: &Typed| match t.ty {
+                            Ty::RefOf(_) => true,
+                            Ty::Of(id) => {
+                                matches!(self.model.types.get(id), crate::types::TypeKind::Ref(_))
+                            }
+                            _ => false,
+                        };
+                        self.note_codesys(if pointer(&l) || pointer(&r) {
+                            "CODESYS allows arithmetic on pointers (in bytes) and compares them as addresses"
+                        } else {
+                            "CODESYS allows arithmetic on BYTE, WORD, DWORD and LWORD"
+                        });
                     }
                     return Typed::ERROR;
                 };

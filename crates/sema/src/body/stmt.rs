@@ -217,6 +217,9 @@ impl<'m> Checker<'m> {
                     )
                 });
             }
+            Fit::Mismatch
+                if self.model.codesys && crate::convert::pointer_cast(&self.model.types, v, to) => {
+            }
             Fit::Mismatch if self.model.codesys && narrowing(&self.model.types, v, to) => {
                 self.warn(Code::W161, span, |c| {
                     let from = crate::names::value_desc(&c.model.types, c.interner, v);
@@ -247,6 +250,10 @@ impl<'m> Checker<'m> {
                 });
                 if narrow {
                     self.note_codesys("CODESYS converts such a value implicitly (warning W161)");
+                } else if crate::convert::pointer_cast(&self.model.types, v, to) {
+                    self.note_codesys(
+                        "CODESYS converts pointers to each other and to and from DWORD/UDINT/LWORD/ULINT",
+                    );
                 }
             }
         }
