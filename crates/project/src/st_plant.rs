@@ -175,14 +175,16 @@ pub fn compile(spec: &StPlantSpec, map: &mut SourceMap) -> Result<Compiled, Vec<
     }
     let pou = match programs.as_slice() {
         [one] => *one,
-        [] => return Err(vec![Diagnostic::error(
+        [] => {
+            return Err(vec![Diagnostic::error(
             Code::E311,
             Span::new(file, 0, 0),
             format!("the plant program `{}` has no PROGRAM", spec.written),
         )
         .with_note(
             "a plant is `PROGRAM Name VAR_INPUT (actuators) VAR_OUTPUT (sensors) ... END_PROGRAM`",
-        )]),
+        )])
+        }
         [first, second, ..] => {
             return Err(remap(
                 vec![Diagnostic::error(
