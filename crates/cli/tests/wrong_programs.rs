@@ -57,3 +57,57 @@ fn level_tank_overflow_is_counted_by_the_plant_in_st() {
         ],
     );
 }
+
+#[test]
+fn crane_driven_into_its_right_end_stop() {
+    // l4 at 9.9 m (10.42 s); the end 0.1 m later at 2 m/s: 50 ms
+    caught(
+        "examples/crane",
+        "crane_end_stop",
+        "normal.scn",
+        &["examples/crane/scenarios/normal.scn:97: expect always plant.end_stops = 0\n  failed at T#10s470ms: it is FALSE\n  values: plant.end_stops = 1\n"],
+    );
+}
+
+#[test]
+fn oscillating_carriage_driven_into_its_right_end() {
+    caught(
+        "examples/oscillating",
+        "oscillating_end_stop",
+        "normal.scn",
+        &["examples/oscillating/scenarios/normal.scn:92: expect always plant.end_stops = 0\n  failed at T#5s510ms: it is FALSE\n  values: plant.end_stops = 1\n"],
+    );
+}
+
+#[test]
+fn sorter_platform_lowered_onto_an_extended_pusher() {
+    caught(
+        "examples/sorter",
+        "sorter_collision",
+        "normal.scn",
+        &["examples/sorter/scenarios/normal.scn:109: expect always plant.collisions = 0 AND plant.jams = 0\n  failed at T#12s610ms: it is FALSE\n  values: plant.collisions = 1, plant.jams = 0\n"],
+    );
+}
+
+#[test]
+fn sorter_belt_2_stopped_jams_the_second_small_package() {
+    caught(
+        "examples/sorter",
+        "sorter_belt_2_off",
+        "normal.scn",
+        &["examples/sorter/scenarios/normal.scn:109: expect always plant.collisions = 0 AND plant.jams = 0\n  failed at T#32s340ms: it is FALSE\n  values: plant.collisions = 0, plant.jams = 1\n"],
+    );
+}
+
+#[test]
+fn carwash_barrier_lowered_onto_a_vehicle() {
+    caught(
+        "examples/carwash",
+        "carwash_barrier_hit",
+        "normal.scn",
+        &[
+            "examples/carwash/scenarios/normal.scn:177: expect always plant.barrier_hits = 0\n  failed at T#31s50ms: it is FALSE\n  values: plant.barrier_hits = 1\n",
+            "plant.washed = 5, plant.unwashed = 0, plant.barrier_hits = 1",
+        ],
+    );
+}
