@@ -111,3 +111,14 @@ fn carwash_barrier_lowered_onto_a_vehicle() {
         ],
     );
 }
+
+#[test]
+fn tank_2_overfilled_by_a_pump_that_never_stops() {
+    // 7 L + 0.06 L/s net: the 10 L rim after 50 s
+    caught(
+        "examples/tank-temperature",
+        "tank_overflow",
+        "normal.scn",
+        &["examples/tank-temperature/scenarios/normal.scn:54: expect always plant.overflows = 0 AND plant.spilled = 0\n  failed at T#50s20ms: it is FALSE\n  values: plant.overflows = 1, plant.spilled = 0.0002\n"],
+    );
+}
