@@ -315,6 +315,8 @@ pub struct StPlant {
     /// A `VAR dt : REAL` (or LREAL), given the step in seconds before
     /// every run so the physics need not repeat `[plant] step`.
     dt: Option<Place>,
+    /// The instance run each step (a copy, so a step does not allocate).
+    instance: ProgramInstance,
 }
 
 impl StPlant {
@@ -352,6 +354,7 @@ impl StPlant {
             .map(|v| v.place.clone());
         StPlant {
             dt,
+            instance: compiled.instance.clone(),
             name: intern(&spec.written),
             compiled,
             engine,
@@ -391,14 +394,19 @@ impl Plant for StPlant {
         self.step_ns
     }
     fn set(&mut self, signal: usize, value: Value) {
-        let Some(v) = self.signal_var(signal) else {
+        // Field by field, so the image is written without copying the place
+        // (this runs for every actuator at every scan).
+        let Some(v) = self
+            .signal_vars
+            .get(signal)
+            .and_then(|&i| self.compiled.vars.get(i))
+        else {
             return;
         };
         if v.dir == Some(Dir::Sensor) {
             return;
         }
-        let place = v.place.clone();
-        crate::image::write(self.engine.image_mut(), &place, value);
+        crate::image::write(self.engine.image_mut(), &v.place, value);
     }
     fn get(&self, signal: usize) -> Value {
         let Some(v) = self.signal_var(signal) else {
@@ -419,11 +427,9 @@ impl Plant for StPlant {
         }
         self.now_ns = self.now_ns.saturating_add(dt_ns);
         if let Some(p) = &self.dt {
-            let p = p.clone();
-            crate::image::write(self.engine.image_mut(), &p, Value::Real(dt_ns as f64 / 1e9));
+            crate::image::write(self.engine.image_mut(), p, Value::Real(dt_ns as f64 / 1e9));
         }
-        let inst = self.compiled.instance.clone();
-        if let Err(f) = self.engine.run_program(&inst, self.now_ns) {
+        if let Err(f) = self.engine.run_program(&self.instance, self.now_ns) {
             self.fault = Some(format!(
                 "the plant program stopped at plant time {} ms: {f}",
                 self.now_ns / 1_000_000
