@@ -86,7 +86,7 @@ fn a_faulting_plant_program_fails_the_scenario() {
     ]);
     assert_eq!(code, Some(1), "{out}");
     assert!(
-        out.contains("    st_plant_fault/scenarios/fault.scn: the plant\n      failed at T#1s990ms: the plant program stopped at plant time 500 ms: st_plant_fault/plant.st:14:10: fault in Tank: division by zero (50 / 0)\n"),
+        out.contains("    st_plant_fault/scenarios/fault.scn: the plant\n      failed at T#500ms: the plant program stopped at plant time 500 ms: st_plant_fault/plant.st:14:10: fault in Tank: division by zero (50 / 0)\n"),
         "{out}"
     );
     assert_eq!(out.lines().last(), Some("0 passed, 1 failed"));

@@ -906,7 +906,7 @@ pub fn run_on<E: Executor, W: Write>(
         failures.push(Failure {
             what: "the plant".into(),
             line: 0,
-            at_ns: end_ns,
+            at_ns: sim.borrow().plant_fault_ns.unwrap_or(end_ns),
             reason: why,
             values: String::new(),
         });
