@@ -332,7 +332,7 @@ codes! {
     E314 => "plant signal type",
         "A VAR_INPUT or VAR_OUTPUT of the plant program has a type a signal cannot have: signals are BOOL, integers, bit strings, enumerations or reals (STRING, TIME, arrays, structures and function blocks stay in VAR).";
     E315 => "invalid plant operator signal",
-        "An entry of `[plant] operators` names no VAR_OUTPUT of the plant program. Operator signals are VAR_OUTPUTs the plant never computes: push-buttons and selectors that scenarios `press` and `set`, and the live view shows as buttons.";
+        "An entry of `[plant] operators` names no VAR_OUTPUT of the plant program. Operator signals are VAR_OUTPUTs the plant never computes: push-buttons and selectors that scenarios and the live view of `automat run` `press` and `set`.";
     E320 => "scenario syntax error",
         "A line of a `.scn` scenario file does not follow the scenario language (docs/scenarios.md): `name`, `duration`, `seed`, `at TIME ACTION`, `when EVENT [after TIME] then ACTION` and `expect ...` lines; conditions with `= <> < <= > >= AND OR XOR NOT`, arithmetic `+ - * / MOD`, parentheses and the functions rise, fall, change, prev, count, abs, min and max; at most 256 operands and 32 levels of nesting.";
     E321 => "unknown name in a scenario",
