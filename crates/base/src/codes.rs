@@ -323,6 +323,18 @@ codes! {
         "A `[plant.params]` entry or a scenario `plant` command is refused by the model (unknown key or value out of range); the message gives the model's own reason.";
     E308 => "project has no sources",
         "The project's `sources` (or, by default, the `*.st` files beside `automat.toml`) name no readable Structured Text file.";
+    E310 => "plant program unreadable",
+        "`[plant] program = \"FILE\"` names a Structured Text file (relative to `automat.toml`) that cannot be read. A plant written in ST is a PROGRAM in that file; see docs/plants-in-st.md.";
+    E311 => "no plant PROGRAM",
+        "The plant program file must hold exactly one PROGRAM (functions and function blocks beside it are fine) and no CONFIGURATION: the plant runs that PROGRAM once per plant step on its own clock.";
+    E312 => "unbound plant input",
+        "A VAR_INPUT of the plant program (an actuator: what the controller drives) is bound to no controller variable: there is no `[bind]` entry for it and no controller variable of the same name. Rename one of them or add `NAME = \"<variable or %Q address>\"` under `[bind]`.";
+    E313 => "unbound plant output (warning)",
+        "A VAR_OUTPUT of the plant program (a sensor: what the controller reads) is bound to no controller variable: the controller never sees it. It is still visible as `plant.NAME` in scenarios, traces and the live view.";
+    E314 => "plant signal type",
+        "A VAR_INPUT or VAR_OUTPUT of the plant program has a type a signal cannot have: signals are BOOL, integers, bit strings, enumerations or reals (STRING, TIME, arrays, structures and function blocks stay in VAR).";
+    E315 => "invalid plant operator signal",
+        "An entry of `[plant] operators` names no VAR_OUTPUT of the plant program. Operator signals are VAR_OUTPUTs the plant never computes: push-buttons and selectors that scenarios and the live view of `automat run` `press` and `set`.";
     E320 => "scenario syntax error",
         "A line of a `.scn` scenario file does not follow the scenario language (docs/scenarios.md): `name`, `duration`, `seed`, `at TIME ACTION`, `when EVENT [after TIME] then ACTION` and `expect ...` lines; conditions with `= <> < <= > >= AND OR XOR NOT`, arithmetic `+ - * / MOD`, parentheses and the functions rise, fall, change, prev, count, abs, min and max; at most 256 operands and 32 levels of nesting.";
     E321 => "unknown name in a scenario",
