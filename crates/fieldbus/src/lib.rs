@@ -10,7 +10,8 @@
 //! - [`client`]: the client (master) for remote I/O: a poller thread per
 //!   device, exchanged with the scan by copying only ([`client::Clients`]
 //!   is the session's `Exchange`).
-//! - [`config`]: `[modbus]` in `automat.toml` (E340–E344).
+//! - [`config`]: `[modbus]` in `automat.toml` (E340–E344), one file per
+//!   table kind.
 //! - [`plant`]: a virtual plant as a Modbus device.
 //!
 //! Invariants: nothing here runs on the scan thread but the copies of
