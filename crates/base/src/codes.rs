@@ -347,6 +347,8 @@ codes! {
         "Two explicit `[[modbus.server.map]]` entries give the same Modbus address of one table: each address of a table maps to one place.";
     E344 => "read-only variable mapped for writing",
         "A CONSTANT or compiler-generated variable (an SFC step flag or time) is mapped where a Modbus client or device would write it: as a coil or holding register of the server, or as the target of a client's read block or status variable. Map it as a discrete input or input register instead.";
+    E345 => "invalid Modbus RTU serial line",
+        "A `[modbus.rtu_server]` or `[[modbus.rtu_device]]` table has a serial setting out of range or in conflict: `device` empty or missing, `baud` outside 50..=4000000, `parity` not none, even or odd, `stop_bits` not 1 or 2, a unit outside 1..=247 (0 is the broadcast address, 248-255 are reserved); a TCP device with serial settings or an RTU device with an `address`; devices on one port with different settings or the same unit; or one port used both by the slave and by devices (a port is either the slave's or the master's). See docs/modbus.md, \"Modbus RTU\".";
 
     // ---- warnings ----
     W001 => "unused variable",

@@ -207,7 +207,11 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         None => None,
     };
     let mut loaded = load(args)?;
-    if args.virtual_clock && (modbus_addr.is_some() || loaded.modbus.server.is_some()) {
+    if args.virtual_clock
+        && (modbus_addr.is_some()
+            || loaded.modbus.server.is_some()
+            || loaded.modbus.rtu_server.is_some())
+    {
         return Err(bad(
             "a Modbus server needs the real-time clock: --virtual-clock does not apply",
         ));
@@ -233,6 +237,7 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         )));
     }
     let modbus_clients = std::mem::take(&mut loaded.modbus.clients);
+    let modbus_rtu = loaded.modbus.rtu_server.take();
     if loaded.cycle_ns <= 0 {
         return Err(bad("--cycle-time must be longer than 0"));
     }
@@ -403,6 +408,31 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             }
         }
     };
+    let modbus_rtu = match modbus_rtu {
+        None => None,
+        Some(cfg) => {
+            let dev = automat_fieldbus::server::SessionDevice {
+                session: Arc::clone(&session),
+                map: cfg.map,
+            };
+            match automat_fieldbus::rtu_server::start(Arc::new(dev), cfg.line, cfg.unit) {
+                Ok(s) => {
+                    eprintln!(
+                        "automat: Modbus RTU slave {} on {} (docs/modbus.md); Ctrl-C stops",
+                        s.unit,
+                        s.line.describe()
+                    );
+                    Some(s)
+                }
+                Err(e) => {
+                    drop(server);
+                    drop(modbus);
+                    let _ = session.shutdown();
+                    return Err(bad(e));
+                }
+            }
+        }
+    };
     if view {
         crate::live::console(
             Arc::clone(&session),
@@ -415,6 +445,7 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
     let mut end = session.join().map_err(bad)?;
     drop(server);
     drop(modbus);
+    drop(modbus_rtu);
     let mut outcome = Outcome::Ok;
     if let Some(saves) = end.retain.take() {
         let saved = retain_run::report(

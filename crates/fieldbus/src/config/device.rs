@@ -1,9 +1,10 @@
-//! `[[modbus.client]]`: a remote device, its timing and its status
-//! variables; its blocks are checked in `block.rs`.
+//! `[[modbus.client]]` and `[[modbus.rtu_device]]`: a remote device, its
+//! timing and its status variables; its blocks are checked in `block.rs`,
+//! its serial line in `serial.rs`.
 
 use super::block::{block, RawBlock};
-use super::Ctx;
-use crate::client::{DeviceSpec, OnLoss, StatusPlaces};
+use super::{serial, Ctx};
+use crate::client::{DeviceSpec, Link, OnLoss, StatusPlaces};
 use automat_base::Code;
 use automat_iec::Elementary;
 use automat_runtime::{resolve_access, PlaceType};
@@ -16,7 +17,11 @@ use toml::Spanned;
 #[serde(deny_unknown_fields)]
 pub(super) struct RawDevice {
     pub(super) name: Spanned<String>,
-    address: Spanned<String>,
+    address: Option<Spanned<String>>,
+    device: Option<Spanned<String>>,
+    baud: Option<Spanned<i64>>,
+    parity: Option<Spanned<String>>,
+    stop_bits: Option<Spanned<i64>>,
     unit: Option<Spanned<i64>>,
     period: Option<Spanned<String>>,
     timeout: Option<Spanned<String>>,
@@ -45,33 +50,86 @@ fn device_addr(s: &str) -> Option<SocketAddr> {
     s.parse().ok()
 }
 
-pub(super) fn device(cx: &mut Ctx, d: RawDevice) -> Option<DeviceSpec> {
-    let name = d.name.get_ref().clone();
-    let before = cx.errors.len();
-    let addr = match device_addr(d.address.get_ref()) {
-        Some(a) => a,
+/// How a `[[modbus.client]]` (TCP) or `[[modbus.rtu_device]]` is reached.
+fn link(cx: &mut Ctx, d: &RawDevice, rtu: bool) -> Link {
+    let name = d.name.get_ref();
+    let nowhere = Link::Tcp(SocketAddr::from(([127, 0, 0, 1], 0)));
+    if rtu {
+        if let Some(a) = &d.address {
+            cx.err(
+                Code::E345,
+                a.span(),
+                format!("RTU device `{name}` is on a serial line: `device = \"/dev/ttyS0\"`, not `address`"),
+            );
+        }
+        let Some(dev) = &d.device else {
+            cx.err(
+                Code::E345,
+                d.name.span(),
+                format!(
+                    "RTU device `{name}` has no `device` (its serial port, e.g. \"/dev/ttyUSB0\")"
+                ),
+            );
+            return nowhere;
+        };
+        return serial::line(cx, dev, &d.baud, &d.parity, &d.stop_bits).map_or(nowhere, Link::Rtu);
+    }
+    let serial_keys = [
+        d.device.as_ref().map(|x| x.span()),
+        d.baud.as_ref().map(|x| x.span()),
+        d.parity.as_ref().map(|x| x.span()),
+        d.stop_bits.as_ref().map(|x| x.span()),
+    ];
+    if let Some(span) = serial_keys.into_iter().flatten().next() {
+        cx.err(
+            Code::E345,
+            span,
+            format!("device `{name}` is a Modbus TCP device: serial settings belong to a `[[modbus.rtu_device]]`"),
+        );
+    }
+    let Some(address) = &d.address else {
+        cx.err(
+            Code::E340,
+            d.name.span(),
+            format!("device `{name}` has no `address` (IP:PORT)"),
+        );
+        return nowhere;
+    };
+    match device_addr(address.get_ref()) {
+        Some(a) => Link::Tcp(a),
         None => {
             cx.err(
                 Code::E340,
-                d.address.span(),
+                address.span(),
                 format!(
                     "device `{name}`: address `{}` is not IP:PORT (e.g. 192.168.0.20:502, [fe80::1]:502, localhost:502)",
-                    d.address.get_ref()
+                    address.get_ref()
                 ),
             );
-            SocketAddr::from(([127, 0, 0, 1], 0))
+            nowhere
         }
-    };
-    let unit = match &d.unit {
-        None => 1,
-        Some(u) => u8::try_from(*u.get_ref()).unwrap_or_else(|_| {
-            cx.err(
-                Code::E340,
-                u.span(),
-                format!("device `{name}`: unit {} is outside 0..=255", u.get_ref()),
-            );
-            1
-        }),
+    }
+}
+
+/// A client device; `rtu` for `[[modbus.rtu_device]]`.
+pub(super) fn device(cx: &mut Ctx, d: RawDevice, rtu: bool) -> Option<DeviceSpec> {
+    let name = d.name.get_ref().clone();
+    let before = cx.errors.len();
+    let link = link(cx, &d, rtu);
+    let unit = if rtu {
+        serial::unit(cx, &d.unit, &name)
+    } else {
+        match &d.unit {
+            None => 1,
+            Some(u) => u8::try_from(*u.get_ref()).unwrap_or_else(|_| {
+                cx.err(
+                    Code::E340,
+                    u.span(),
+                    format!("device `{name}`: unit {} is outside 0..=255", u.get_ref()),
+                );
+                1
+            }),
+        }
     };
     let period = cx.duration(&d.period, "period", Duration::from_millis(100));
     let timeout = cx.duration(&d.timeout, "timeout", Duration::from_millis(500));
@@ -135,7 +193,7 @@ pub(super) fn device(cx: &mut Ctx, d: RawDevice) -> Option<DeviceSpec> {
     };
     (cx.errors.len() == before).then_some(DeviceSpec {
         name,
-        addr,
+        link,
         unit,
         period,
         timeout,

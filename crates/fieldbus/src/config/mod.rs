@@ -8,6 +8,7 @@
 
 mod block;
 mod device;
+mod serial;
 mod server;
 
 use crate::client::DeviceSpec;
@@ -20,6 +21,7 @@ use std::collections::BTreeMap;
 use std::time::Duration;
 use toml::Spanned;
 
+pub use serial::RtuServerConfig;
 pub use server::ServerConfig;
 
 #[derive(Deserialize)]
@@ -33,13 +35,18 @@ struct RawModbus {
     server: Option<server::RawServer>,
     #[serde(default)]
     client: Vec<device::RawDevice>,
+    rtu_server: Option<serial::RawRtuServer>,
+    #[serde(default)]
+    rtu_device: Vec<device::RawDevice>,
 }
 
 /// `[modbus]` checked.
 #[derive(Clone, Debug, Default)]
 pub struct Config {
     pub server: Option<ServerConfig>,
+    /// TCP and RTU devices.
     pub clients: Vec<DeviceSpec>,
+    pub rtu_server: Option<RtuServerConfig>,
 }
 
 struct Ctx<'a> {
@@ -141,8 +148,14 @@ pub fn load(text: &str, file: FileId, program: &Program) -> Result<Config, Vec<D
     };
     let server = raw.server.map(|s| server::server_config(&mut cx, s));
     let mut names: BTreeMap<String, ()> = BTreeMap::new();
+    let rtu_server = raw
+        .rtu_server
+        .map(|s| serial::rtu_server_config(&mut cx, s));
     let mut clients = Vec::new();
-    for d in raw.client {
+    let tcp = raw.client.into_iter().map(|d| (d, false));
+    let rtu = raw.rtu_device.into_iter().map(|d| (d, true));
+    let mut lines = Vec::new();
+    for (d, is_rtu) in tcp.chain(rtu) {
         if names.insert(d.name.get_ref().clone(), ()).is_some() {
             cx.err(
                 Code::E340,
@@ -150,14 +163,24 @@ pub fn load(text: &str, file: FileId, program: &Program) -> Result<Config, Vec<D
                 format!("two Modbus client devices are named `{}`", d.name.get_ref()),
             );
         }
-        if let Some(spec) = device::device(&mut cx, d) {
+        let span = d.name.span();
+        if let Some(spec) = device::device(&mut cx, d, is_rtu) {
+            if let crate::client::Link::Rtu(line) = &spec.link {
+                lines.push((line.clone(), spec.unit, span));
+            }
             clients.push(spec);
         }
     }
+    serial::one_bus_each(
+        &mut cx,
+        &lines,
+        rtu_server.as_ref().and_then(|s| s.as_ref()),
+    );
     if cx.errors.is_empty() {
         Ok(Config {
             server: server.flatten(),
             clients,
+            rtu_server: rtu_server.flatten(),
         })
     } else {
         Err(cx.errors)

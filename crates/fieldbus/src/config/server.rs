@@ -72,12 +72,7 @@ pub(super) fn server_config(cx: &mut Ctx, s: RawServer) -> Option<ServerConfig> 
         }
     }
     options.idle_timeout = cx.duration(&s.idle_timeout, "idle_timeout", options.idle_timeout);
-    let mut map = if s.default_map.unwrap_or(true) {
-        Map::default_of(cx.program)
-    } else {
-        Map::default()
-    };
-    map.read_only = s.read_only;
+    let map = build_map(cx, s.default_map, s.read_only, &s.map);
     if let Some(why) = options.open_to_writes(map.read_only) {
         cx.err(
             Code::E340,
@@ -85,11 +80,28 @@ pub(super) fn server_config(cx: &mut Ctx, s: RawServer) -> Option<ServerConfig> 
             format!("{why}: list the clients in `allow = [...]` or set `read_only = true`"),
         );
     }
+    addr.map(|_| ServerConfig { options, map })
+}
+
+/// A server's map (TCP or RTU): the default map unless turned off, then
+/// the entries.
+pub(super) fn build_map(
+    cx: &mut Ctx,
+    default_map: Option<bool>,
+    read_only: bool,
+    entries: &[RawEntry],
+) -> Map {
+    let mut map = if default_map.unwrap_or(true) {
+        Map::default_of(cx.program)
+    } else {
+        Map::default()
+    };
+    map.read_only = read_only;
     let mut taken: BTreeMap<(Table, u32), String> = BTreeMap::new();
-    for e in &s.map {
+    for e in entries {
         entry(cx, e, &mut map, &mut taken);
     }
-    addr.map(|_| ServerConfig { options, map })
+    map
 }
 
 fn entry(cx: &mut Ctx, e: &RawEntry, map: &mut Map, taken: &mut BTreeMap<(Table, u32), String>) {
