@@ -40,6 +40,7 @@ use std::sync::{Arc, Mutex};
 pub fn wanted(args: &RunArgs) -> bool {
     args.listen.is_some()
         || args.modbus_server.is_some()
+        || args.opcua.is_some()
         || (args.cycles.is_none()
             && args.duration.is_none()
             && args.scenario.is_none()
@@ -76,6 +77,17 @@ struct LoadedRun {
     project: Option<automat_project::Project>,
     /// `[modbus]` of the project, checked against the program.
     modbus: automat_fieldbus::config::Config,
+    /// `[opcua]` of the project.
+    opcua: Option<OpcuaCfg>,
+}
+
+/// `[opcua]` with its certificate folder made absolute.
+#[derive(Clone, Debug)]
+#[cfg_attr(not(feature = "opcua"), allow(dead_code))]
+struct OpcuaCfg {
+    addr: std::net::SocketAddr,
+    pki_dir: std::path::PathBuf,
+    trust_client_certs: bool,
 }
 
 fn load(args: &RunArgs) -> Result<LoadedRun, Outcome> {
@@ -92,6 +104,7 @@ fn load(args: &RunArgs) -> Result<LoadedRun, Outcome> {
         cycle_ns: args.cycle_time.unwrap_or(10_000_000),
         project: None,
         modbus: Default::default(),
+        opcua: None,
     })
 }
 
@@ -146,13 +159,44 @@ fn load_project(args: &RunArgs, toml: &Path) -> Result<LoadedRun, Outcome> {
     let modbus =
         automat_fieldbus::config::load(&map.get(project.file).text, project.file, &program)
             .map_err(|d| fail(&d))?;
+    let opcua = opcua_config(&project, &map).map_err(|d| fail(&d))?;
     Ok(LoadedRun {
         safe,
         cycle_ns: args.cycle_time.unwrap_or(project.cycle_time_ns),
         program,
         project: Some(project),
         modbus,
+        opcua,
     })
+}
+
+/// `[opcua]` of the project; the certificates default to
+/// `.automat/opcua-pki` in the project folder.
+fn opcua_config(
+    project: &automat_project::Project,
+    map: &SourceMap,
+) -> Result<Option<OpcuaCfg>, Vec<automat_base::Diagnostic>> {
+    #[cfg(feature = "opcua")]
+    {
+        let dir = project.dir.clone();
+        Ok(
+            automat_opcua::config::load(&map.get(project.file).text, project.file)?.map(|c| {
+                OpcuaCfg {
+                    addr: c.addr,
+                    pki_dir: dir.join(
+                        c.pki_dir
+                            .unwrap_or_else(|| std::path::PathBuf::from(".automat/opcua-pki")),
+                    ),
+                    trust_client_certs: c.trust_client_certs,
+                }
+            }),
+        )
+    }
+    #[cfg(not(feature = "opcua"))]
+    {
+        let _ = (project, map);
+        Ok(None)
+    }
 }
 
 fn users(project: Option<&automat_project::Project>) -> Vec<User> {
@@ -184,6 +228,11 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
                 "{name} does not apply with --listen: the run goes on until Ctrl-C (with --virtual-clock, scans run on `step` commands)"
             )));
         }
+        if given && args.opcua.is_some() {
+            return Err(bad(format!(
+                "{name} does not apply with --opcua: the run goes on in real time until Ctrl-C"
+            )));
+        }
         if given && args.modbus_server.is_some() {
             return Err(bad(format!(
                 "{name} does not apply with --modbus-server: the run goes on in real time until Ctrl-C"
@@ -206,7 +255,41 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         ),
         None => None,
     };
+    let opcua_addr = match &args.opcua {
+        #[cfg(feature = "opcua")]
+        Some(a) => {
+            Some(automat_opcua::config::parse_addr(a).map_err(|e| bad(format!("--opcua: {e}")))?)
+        }
+        #[cfg(not(feature = "opcua"))]
+        Some(_) => {
+            return Err(bad(
+                "--opcua: this automat was built without OPC UA (cargo feature `opcua`)",
+            ))
+        }
+        None => None,
+    };
     let mut loaded = load(args)?;
+    let opcua = match (opcua_addr, loaded.opcua.take()) {
+        (Some(addr), Some(mut c)) => {
+            c.addr = addr;
+            Some(c)
+        }
+        (Some(addr), None) => Some(OpcuaCfg {
+            addr,
+            pki_dir: loaded
+                .project
+                .as_ref()
+                .map_or_else(|| std::path::PathBuf::from("."), |p| p.dir.clone())
+                .join(".automat/opcua-pki"),
+            trust_client_certs: false,
+        }),
+        (None, c) => c,
+    };
+    if args.virtual_clock && opcua.is_some() {
+        return Err(bad(
+            "an OPC UA server needs the real-time clock: --virtual-clock does not apply",
+        ));
+    }
     if args.virtual_clock
         && (modbus_addr.is_some()
             || loaded.modbus.server.is_some()
@@ -318,6 +401,8 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
     });
     let cold = args.cold;
     let budget = args.max_instructions;
+    let opcua_users = users(loaded.project.as_ref());
+    let opcua_sample_ns = loaded.cycle_ns;
     let project = loaded.project;
     let view_console = Arc::clone(&console);
     let view_stop = Arc::clone(&stop);
@@ -408,6 +493,42 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             }
         }
     };
+    #[cfg(feature = "opcua")]
+    let opcua_server = match opcua {
+        None => None,
+        Some(c) => {
+            let opts = automat_opcua::Options {
+                addr: c.addr,
+                pki_dir: c.pki_dir,
+                users: opcua_users,
+                trust_client_certs: c.trust_client_certs,
+                sample_ns: opcua_sample_ns,
+            };
+            match automat_opcua::start(Arc::clone(&session), opts) {
+                Ok(s) => {
+                    eprintln!(
+                        "automat: OPC UA server on opc.tcp://{} ({} variables; {}; docs/opcua.md); Ctrl-C stops",
+                        s.addr,
+                        s.variables,
+                        if s.anonymous {
+                            "anonymous read-only without security, users with Basic256Sha256"
+                        } else {
+                            "users with Basic256Sha256 only"
+                        }
+                    );
+                    Some(s)
+                }
+                Err(e) => {
+                    drop(server);
+                    drop(modbus);
+                    let _ = session.shutdown();
+                    return Err(bad(e));
+                }
+            }
+        }
+    };
+    #[cfg(not(feature = "opcua"))]
+    let _ = (opcua, opcua_users, opcua_sample_ns);
     let modbus_rtu = match modbus_rtu {
         None => None,
         Some(cfg) => {
@@ -446,6 +567,8 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
     drop(server);
     drop(modbus);
     drop(modbus_rtu);
+    #[cfg(feature = "opcua")]
+    drop(opcua_server);
     let mut outcome = Outcome::Ok;
     if let Some(saves) = end.retain.take() {
         let saved = retain_run::report(
