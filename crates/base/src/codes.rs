@@ -304,7 +304,7 @@ codes! {
 
     // ---- projects, plants and scenarios (automat-project, automat-scenario) ----
     E300 => "invalid project file",
-        "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]`, `[bind]`, `[tasks.NAME]` (watchdog, sensitivity; NAME a task of the program, see docs/watchdog.md), `[retain]`, `[safe_state]`, `[users.NAME]`, `[modbus]` (see docs/modbus.md) and `[runtime]` (realtime, priority 1 to 99, cpus such as `1` or `0,2-3`; see docs/realtime.md).";
+        "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]`, `[bind]`, `[tasks.NAME]` (watchdog, sensitivity; NAME a task of the program, see docs/watchdog.md), `[retain]`, `[safe_state]`, `[users.NAME]`, `[modbus]` (see docs/modbus.md), `[opcua]` (see docs/opcua.md) and `[runtime]` (realtime, priority 1 to 99, cpus such as `1` or `0,2-3`; see docs/realtime.md).";
     E301 => "unknown plant model",
         "`[plant] model` names no model of the plant library. The message lists every known model.";
     E302 => "unknown plant signal",
