@@ -162,6 +162,10 @@ fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
     // though a virtual-clock run opens no socket and exchanges nothing.
     automat_fieldbus::config::load(&map.get(project.file).text, project.file, &program)
         .map_err(|d| fail(&map, &d))?;
+    // `[opcua]` likewise (a simulation serves nothing).
+    #[cfg(feature = "opcua")]
+    automat_opcua::config::load(&map.get(project.file).text, project.file)
+        .map_err(|d| fail(&map, &d))?;
     crate::engines::default_watchdog(&mut program, args.watchdog);
     // Without [plant] the program runs against no plant.
     let plant = project.new_plant().map_err(|d| fail(&map, &d))?;
