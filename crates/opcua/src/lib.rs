@@ -35,6 +35,9 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::thread::JoinHandle;
 
+/// Sessions served at once.
+pub const MAX_SESSIONS: usize = 32;
+
 /// The namespace of the PLC's nodes (index 1).
 pub const NAMESPACE: &str = "urn:automat:plc";
 
@@ -147,6 +150,9 @@ pub fn start(session: Arc<Session>, opts: Options) -> Result<OpcuaServer, String
         .host(addr.ip().to_string())
         .port(addr.port())
         .discovery_urls(vec!["/".to_string()])
+        // Sessions at once: an HMI or two and a few SCADA clients; more
+        // are refused rather than piling up.
+        .max_sessions(MAX_SESSIONS)
         .with_authenticator(users.clone())
         // The secure endpoints' user-name token: the authenticator checks
         // the users of `[users]`; this entry only names the token (its
