@@ -306,7 +306,7 @@ codes! {
 
     // ---- projects, plants and scenarios (automat-project, automat-scenario) ----
     E300 => "invalid project file",
-        "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]`, `[bind]`, `[tasks.NAME]` (watchdog, sensitivity; NAME a task of the program, see docs/watchdog.md), `[retain]`, `[safe_state]`, `[users.NAME]`, `[modbus]` (see docs/modbus.md) and `[runtime]` (realtime, priority 1 to 99, cpus such as `1` or `0,2-3`; see docs/realtime.md).";
+        "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]`, `[bind]`, `[tasks.NAME]` (watchdog, sensitivity; NAME a task of the program, see docs/watchdog.md), `[retain]`, `[safe_state]`, `[users.NAME]`, `[modbus]` (see docs/modbus.md), `[opcua]` (see docs/opcua.md) and `[runtime]` (realtime, priority 1 to 99, cpus such as `1` or `0,2-3`; see docs/realtime.md).";
     E301 => "unknown plant model",
         "`[plant] model` names no model of the plant library. The message lists every known model.";
     E302 => "unknown plant signal",
@@ -361,6 +361,10 @@ codes! {
         "Two explicit `[[modbus.server.map]]` entries give the same Modbus address of one table: each address of a table maps to one place.";
     E344 => "read-only variable mapped for writing",
         "A CONSTANT or compiler-generated variable (an SFC step flag or time) is mapped where a Modbus client or device would write it: as a coil or holding register of the server, or as the target of a client's read block or status variable. Map it as a discrete input or input register instead.";
+    E345 => "invalid Modbus RTU serial line",
+        "A `[modbus.rtu_server]` or `[[modbus.rtu_device]]` table has a serial setting out of range or in conflict: `device` empty or missing, `baud` outside 50..=4000000, `parity` not none, even or odd, `stop_bits` not 1 or 2, a unit outside 1..=247 (0 is the broadcast address, 248-255 are reserved); a TCP device with serial settings or an RTU device with an `address`; devices on one port with different settings or the same unit; or one port used both by the slave and by devices (a port is either the slave's or the master's). See docs/modbus.md, \"Modbus RTU\".";
+    E346 => "invalid OPC UA configuration",
+        "The `[opcua]` table of `automat.toml` has a key of the wrong form: `listen` that is not PORT or ADDR:PORT (a port alone binds 127.0.0.1), a key that is not `listen`, `pki_dir` or `trust_client_certs`, or a value of the wrong type. See docs/opcua.md.";
 
     // ---- warnings ----
     W001 => "unused variable",

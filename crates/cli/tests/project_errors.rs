@@ -40,6 +40,8 @@ fn project_file_errors_point_into_automat_toml() {
         ("e342_modbus_type", "e342_modbus_type/automat.toml:12:7: error[E342]: `Ctrl.l1` is BOOL: registers take one elementary value of 8 to 64 bits"),
         ("e343_modbus_overlap", "e343_modbus_overlap/automat.toml:19:11: error[E343]: discrete_inputs address 100 is mapped twice: to `Ctrl.l1` and to `Ctrl.l2`"),
         ("e344_modbus_constant", "e344_modbus_constant/automat.toml:12:7: error[E344]: `Ctrl.DWELL_TIME` is a CONSTANT: clients would write it as holding_registers"),
+        ("e345_modbus_serial", "e345_modbus_serial/automat.toml:10:8: error[E345]: baud 10 is outside 50..=4000000"),
+        ("e346_bad_opcua", "e346_bad_opcua/automat.toml:9:10: error[E346]: listen: `nowhere` is not PORT or ADDR:PORT"),
     ];
     for (dir, want) in cases {
         let (code, _, err) = automat(&["run", dir, "--cycles", "1"]);

@@ -58,6 +58,10 @@ struct RawFile {
     #[serde(default)]
     #[allow(dead_code)]
     modbus: Option<serde::de::IgnoredAny>,
+    /// `[opcua]`: read and checked by `automat-opcua` from the same text.
+    #[serde(default)]
+    #[allow(dead_code)]
+    opcua: Option<serde::de::IgnoredAny>,
 }
 
 #[derive(Deserialize)]
