@@ -181,6 +181,8 @@ pub fn binary_in(
             Some(l.ty)
         }
         (s, Shape::Ref(_)) if int_like(&s) && op == BinaryOp::Add => Some(r.ty),
+        // The distance between two pointers, in bytes.
+        (Shape::Ref(_), Shape::Ref(_)) if op == BinaryOp::Sub => Some(Ty::elem(Elem::Dint)),
         (Shape::Elem(a), Shape::Elem(b)) if word(a) && word(b) => lub(a, b).map(Ty::elem),
         (Shape::Elem(a), s @ Shape::Int(_)) if word(a) => {
             adapt(s, a).and_then(|b| lub(a, b)).map(Ty::elem)

@@ -125,8 +125,10 @@ fn check(name: &str, what: &str, text: &str) -> Duration {
                     | Code::E005
                     | Code::E006
                     | Code::E007
-                    // VAR_STAT outside the CODESYS dialect.
+                    // VAR_STAT outside the CODESYS dialect, a CODESYS
+                    // ACTION after something else than a function block.
                     | Code::E160
+                    | Code::E161
             ) || is_il_code(d.code)
                 || is_chart_code(d.code),
             "{name} ({what}): unexpected code {:?}",

@@ -30,6 +30,7 @@ impl Parser<'_> {
                         items.push(item);
                     }
                 }
+                Tok::Kw(Kw::Action) => self.pou_action(&mut items),
                 Tok::Kw(Kw::Type) => items.push(Item::Types(self.type_block())),
                 Tok::Kw(Kw::VarGlobal) => items.push(Item::Globals(self.var_block())),
                 Tok::Kw(Kw::Configuration) => {
@@ -62,6 +63,82 @@ impl Parser<'_> {
             }
         }
         items
+    }
+
+    /// CODESYS V2.3 `ACTION name: statements END_ACTION` after a function
+    /// block (as its text exports write a POU's actions): a method of that
+    /// function block without parameters or result, called `name();` in
+    /// its body and `inst.name();` outside, running on the instance's
+    /// variables. After anything else it is E161.
+    fn pou_action(&mut self, items: &mut Vec<Item>) {
+        let opener = self.bump();
+        let name = self.expect_ident("the name of the action");
+        self.eat(Tok::Colon);
+        self.frames.push(super::sfc::END_ACTION);
+        self.oop_depth += 1;
+        let body = self.stmt_list(false);
+        self.oop_depth -= 1;
+        self.frames.pop();
+        if !self.eat_kw(Kw::EndAction) {
+            self.report_unclosed(Kw::EndAction, opener);
+        }
+        self.eat(Tok::Semi);
+        let span = self.span_from(opener.start);
+        if !self.opts.codesys {
+            self.report(
+                automat_base::Diagnostic::error(
+                    automat_base::Code::E161,
+                    self.tok_span(opener),
+                    "an ACTION outside a chart is a CODESYS V2.3 action of the POU before it",
+                )
+                .with_note("check with `--lib codesys` (or `libraries = [\"codesys\"]` in automat.toml) to read CODESYS code"),
+            );
+            return;
+        }
+        let Some(name) = name else { return };
+        let method = crate::ast::oop::Method {
+            name,
+            visibility: crate::ast::oop::Visibility::Public,
+            visibility_span: None,
+            is_abstract: false,
+            is_final: false,
+            is_override: false,
+            return_type: None,
+            var_blocks: Vec::new(),
+            body,
+            span,
+        };
+        let fb = matches!(items.last(), Some(Item::Pou(p)) if p.kind == PouKind::FunctionBlock);
+        match items.last_mut() {
+            Some(Item::Class(c)) if c.kind == crate::ast::oop::ClassKind::FunctionBlock => {
+                c.methods.push(method);
+            }
+            Some(Item::Pou(_)) if fb => {
+                let Some(Item::Pou(p)) = items.pop() else {
+                    return;
+                };
+                let crate::ast::Body::St(body) = p.body;
+                items.push(Item::Class(Box::new(crate::ast::oop::Class {
+                    kind: crate::ast::oop::ClassKind::FunctionBlock,
+                    name: p.name,
+                    is_abstract: false,
+                    is_final: false,
+                    extends: None,
+                    implements: Vec::new(),
+                    var_blocks: p.var_blocks,
+                    methods: vec![method],
+                    properties: Vec::new(),
+                    body,
+                    span: p.span,
+                    desugared: false,
+                })));
+            }
+            _ => self.report(automat_base::Diagnostic::error(
+                automat_base::Code::E161,
+                self.tok_span(opener),
+                "a CODESYS ACTION is read after the FUNCTION_BLOCK it belongs to; actions of programs and functions are not supported yet",
+            )),
+        }
     }
 
     /// FUNCTION, FUNCTION_BLOCK or PROGRAM, at its keyword. `None` when it

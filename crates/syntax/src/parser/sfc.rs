@@ -25,7 +25,7 @@ use crate::ast::{ExprKind, Ident, Lang, LitKind, Literal, PouKind, Stmt, VarBloc
 use crate::lexer::{Kw, Tok};
 use automat_base::{Code, Diagnostic};
 
-const END_ACTION: &[Kw] = &[Kw::EndAction];
+pub(super) const END_ACTION: &[Kw] = &[Kw::EndAction];
 
 impl Parser<'_> {
     /// Whether the current token's text is `word` (any case).
