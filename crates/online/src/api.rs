@@ -51,7 +51,7 @@ fn refuse(status: StatusCode, message: impl Into<String>) -> Refusal {
     }
 }
 
-fn session_error(e: &Error) -> Response {
+pub fn session_error(e: &Error) -> Response {
     let status = match e {
         Error::Path(_) | Error::Value(_) => StatusCode::BAD_REQUEST,
         Error::ReadOnly(_) | Error::Refused(_) => StatusCode::CONFLICT,

@@ -14,6 +14,7 @@ pub mod api;
 pub mod auth;
 pub mod charts;
 pub mod listen;
+pub mod plant;
 pub mod watch;
 
 pub use auth::{hash_password, token_file, Role, User};
@@ -102,6 +103,7 @@ pub fn router(app: App) -> Router {
         .route("/api/v1/login", post(api::login))
         .route("/api/v1/watch", get(watch::watch))
         .route("/api/v1/charts", get(charts::charts))
+        .route("/api/v1/plant", get(plant::get).post(plant::post))
         .layer(DefaultBodyLimit::max(MAX_BODY))
         .with_state(app)
 }
