@@ -247,6 +247,8 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         opts.users = users(loaded.project.as_ref());
         opts.insecure = args.insecure;
         opts.tls = args.tls_cert.clone().zip(args.tls_key.clone());
+        opts.project = loaded.project.as_ref().map(|p| p.name.clone());
+        opts.cycle_time_ns = loaded.cycle_ns;
         // The charts as the compiler reads them, for the HMI.
         opts.charts = match loaded.project.as_ref() {
             Some(p) => {

@@ -178,6 +178,9 @@ pub async fn status(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery)
         _ => Value::Null,
     };
     axum::Json(json!({
+        "project": app.about["project"],
+        "cycle_time_ns": app.about["cycle_time_ns"],
+        "tasks": app.about["tasks"],
         "state": s.state.name(),
         "plc_time_ns": s.plc_time_ns,
         "scans": s.scans,

@@ -1,0 +1,223 @@
+// SFC charts drawn as SVG from the compiler's own chart model
+// (`GET /api/v1/charts`), so every dialect (textual SFC, ISaGRAF, PL7,
+// PLCopen graphical SFC through its importer) is drawn the same way.
+//
+// Layout: steps in levels from the initial steps, breadth first, each
+// transition under its preceding steps, the following steps under it; a
+// transition back to a step already placed above is drawn as a jump
+// (`↑ GS1`, the Grafcet step reference) instead of a long loop line.
+// Links are orthogonal; a transition with several preceding or following
+// steps gets the double line of a simultaneous convergence or divergence,
+// several transitions leaving one step share its single line (a
+// selection).
+'use strict';
+
+(function () {
+  const NS = 'http://www.w3.org/2000/svg';
+  const STEP_W = 110, STEP_H = 44, COL = 190, ACT_W = 190, ACT_ROW = 18, GAP = 34;
+
+  function s(tag, attrs, ...children) {
+    const e = document.createElementNS(NS, tag);
+    for (const [k, v] of Object.entries(attrs || {})) {
+      if (v === undefined || v === null) continue;
+      if (k === 'text') e.textContent = v; else e.setAttribute(k, String(v));
+    }
+    for (const c of children) if (c) e.append(c);
+    return e;
+  }
+
+  const key = (n) => n.toLowerCase();
+
+  function layout(chart) {
+    const steps = new Map();
+    chart.steps.forEach((st, i) => steps.set(key(st.name), { st, i, level: null, x: 0 }));
+    const trs = chart.transitions.map((t, i) => ({ t, i, level: null, x: 0, back: [] }));
+    const outOf = new Map();
+    for (const tr of trs) for (const f of tr.t.from) {
+      const k = key(f);
+      if (!outOf.has(k)) outOf.set(k, []);
+      outOf.get(k).push(tr);
+    }
+    const queue = [];
+    const place = (node, level, x) => { node.level = level; node.x = x; queue.push(node); };
+    const roots = chart.steps.filter((st) => st.initial);
+    let x0 = 0;
+    for (const st of roots.length ? roots : chart.steps.slice(0, 1)) { place(steps.get(key(st.name)), 0, x0); x0 += COL * 2; }
+    const run = () => {
+      while (queue.length) {
+        const n = queue.shift();
+        const outs = (outOf.get(key(n.st.name)) || []).filter((tr) => tr.level === null);
+        // Priority first (ISaGRAF and PL7 keep the written order).
+        outs.sort((a, b) => (a.t.priority ?? a.i) - (b.t.priority ?? b.i));
+        outs.forEach((tr, j) => {
+          const froms = tr.t.from.map((f) => steps.get(key(f))).filter((m) => m && m.level !== null);
+          tr.level = Math.max(...froms.map((m) => m.level));
+          const mid = froms.reduce((a, m) => a + m.x, 0) / froms.length;
+          tr.x = froms.length > 1 ? mid : n.x + (j - (outs.length - 1) / 2) * COL;
+          const tos = tr.t.to.map((t) => steps.get(key(t))).filter(Boolean);
+          const fresh = tos.filter((m) => m.level === null && !tr.t.jump);
+          tos.forEach((m) => { if (m.level !== null || tr.t.jump) tr.back.push(m); });
+          fresh.forEach((m, k) => place(m, tr.level + 1, tr.x + (k - (fresh.length - 1) / 2) * COL));
+        });
+      }
+    };
+    run();
+    // Steps no transition reaches from an initial step: drawn below.
+    for (const n of steps.values()) {
+      if (n.level === null) {
+        const deepest = Math.max(0, ...[...steps.values()].filter((m) => m.level !== null).map((m) => m.level));
+        place(n, deepest + 1, 0);
+        run();
+      }
+    }
+    for (const tr of trs) if (tr.level === null) { tr.level = 0; tr.x = -COL; }
+    // Forward links may now point up after all: drawn as jumps too.
+    for (const tr of trs) {
+      tr.fwd = tr.t.to.map((t) => steps.get(key(t))).filter((m) => m && !tr.back.includes(m));
+      for (const m of tr.fwd.filter((m) => m.level <= tr.level)) tr.back.push(m);
+      tr.fwd = tr.fwd.filter((m) => m.level > tr.level);
+    }
+    // Nodes of a level left to right, at least a column apart.
+    const spread = (nodes) => {
+      const byLevel = new Map();
+      for (const n of nodes) { if (!byLevel.has(n.level)) byLevel.set(n.level, []); byLevel.get(n.level).push(n); }
+      for (const row of byLevel.values()) {
+        row.sort((a, b) => a.x - b.x);
+        for (let i = 1; i < row.length; i++) if (row[i].x < row[i - 1].x + COL) row[i].x = row[i - 1].x + COL;
+      }
+    };
+    spread([...steps.values()]);
+    spread(trs);
+    const levels = Math.max(0, ...[...steps.values()].map((n) => n.level), ...trs.map((t) => t.level)) + 1;
+    // Each level as tall as its steps' action lists.
+    const heights = new Array(levels).fill(STEP_H);
+    for (const n of steps.values()) heights[n.level] = Math.max(heights[n.level], STEP_H, n.st.actions.length * ACT_ROW + 6);
+    const tops = [];
+    let y = 40;
+    for (let l = 0; l < levels; l++) { tops.push(y); y += heights[l] + GAP * 2 + 12; }
+    const minX = Math.min(...[...steps.values()].map((n) => n.x), ...trs.map((t) => t.x));
+    const shift = 30 + STEP_W / 2 - minX;
+    for (const n of steps.values()) n.x += shift;
+    for (const t of trs) t.x += shift;
+    const maxX = Math.max(...[...steps.values()].map((n) => n.x + STEP_W / 2 + (n.st.actions.length ? ACT_W + 16 : 0)), ...trs.map((t) => t.x + 260));
+    return { steps, trs, tops, heights, width: maxX + 30, height: y + 20 };
+  }
+
+  function draw(chart, inst) {
+    const c = chart.chart;
+    const L = layout(c);
+    const svg = s('svg', { class: 'sfc', width: L.width, height: L.height, viewBox: `0 0 ${L.width} ${L.height}`, role: 'img', 'aria-label': `SFC chart of ${chart.pou}` });
+    svg.append(s('text', { class: 'title', x: 12, y: 22, text: `${chart.pou}${inst ? ' — ' + inst : ''}` }));
+    const links = s('g'), nodes = s('g');
+    svg.append(links, nodes);
+    const at = (n) => ({ top: L.tops[n.level], bottom: L.tops[n.level] + STEP_H });
+    const barY = (tr) => L.tops[tr.level] + L.heights[tr.level] + GAP;
+    const prefix = inst ? inst + '.' : '';
+    const paths = [];
+    const types = (window.automatHmi && window.automatHmi.types) || new Map();
+    const live = { steps: [], trs: [] };
+
+    for (const n of L.steps.values()) {
+      const { top } = at(n);
+      const g = s('g', { class: 'step', 'data-step': n.st.name });
+      const x = n.x - STEP_W / 2;
+      g.append(s('rect', { x, y: top, width: STEP_W, height: STEP_H }));
+      if (n.st.initial) g.append(s('rect', { x: x + 4, y: top + 4, width: STEP_W - 8, height: STEP_H - 8 }));
+      if (n.st.body) {
+        // A macro-step: the IEC symbol's lines at the top and the bottom.
+        g.append(s('line', { class: 'link', x1: x, y1: top + 5, x2: x + STEP_W, y2: top + 5 }));
+        g.append(s('line', { class: 'link', x1: x, y1: top + STEP_H - 5, x2: x + STEP_W, y2: top + STEP_H - 5 }));
+      }
+      g.append(s('text', { class: 'name', x: n.x, y: top + 19, 'text-anchor': 'middle', text: n.st.name }));
+      const time = s('text', { class: 'time', x: n.x, y: top + 35, 'text-anchor': 'middle' });
+      g.append(time);
+      g.append(s('title', { text: `${n.st.initial ? 'initial step' : n.st.body ? 'macro-step' : 'step'} ${n.st.name} (line ${n.st.line})` }));
+      if (n.st.actions.length) {
+        const ax = n.x + STEP_W / 2 + 16;
+        const a = s('g', { class: 'act' });
+        a.append(s('line', { class: 'link', x1: n.x + STEP_W / 2, y1: top + STEP_H / 2, x2: ax, y2: top + STEP_H / 2 }));
+        n.st.actions.forEach((act, i) => {
+          const ay = top + i * ACT_ROW;
+          a.append(s('rect', { x: ax, y: ay, width: 48, height: ACT_ROW }));
+          a.append(s('rect', { x: ax + 48, y: ay, width: ACT_W - 48, height: ACT_ROW }));
+          a.append(s('text', { class: 'q', x: ax + 4, y: ay + 13, text: act.qualifier + (act.time ? ' ' + act.time : '') }));
+          const label = act.name + (act.indicators && act.indicators.length ? ' (' + act.indicators.join(', ') + ')' : '');
+          a.append(s('text', { x: ax + 52, y: ay + 13, text: label.length > 24 ? label.slice(0, 23) + '…' : label }, s('title', { text: label })));
+        });
+        g.append(a);
+      }
+      nodes.append(g);
+      const px = prefix + n.st.name + '.X', pt = prefix + n.st.name + '.T';
+      if (inst) paths.push(px, pt);
+      live.steps.push({ g, time, px, pt, name: key(n.st.name), on: null, t: null });
+    }
+
+    for (const tr of L.trs) {
+      const y = barY(tr);
+      const from = tr.t.from.map((f) => L.steps.get(key(f))).filter(Boolean);
+      const g = s('g', { class: 'tr' });
+      if (from.length > 1) {
+        // Simultaneous convergence: a double line above the transition.
+        const xs = from.map((m) => m.x).concat(tr.x);
+        const dy = y - 16;
+        links.append(s('line', { class: 'double', x1: Math.min(...xs) - 10, y1: dy - 3, x2: Math.max(...xs) + 10, y2: dy - 3 }));
+        links.append(s('line', { class: 'double', x1: Math.min(...xs) - 10, y1: dy, x2: Math.max(...xs) + 10, y2: dy }));
+        for (const m of from) links.append(s('path', { class: 'link', d: `M${m.x},${at(m).bottom} V${dy - 3}` }));
+        links.append(s('path', { class: 'link', d: `M${tr.x},${dy} V${y}` }));
+      } else {
+        for (const m of from) links.append(s('path', { class: 'link', d: `M${m.x},${at(m).bottom} V${y - 14} H${tr.x} V${y}` }));
+      }
+      if (tr.fwd.length > 1) {
+        const xs = tr.fwd.map((m) => m.x).concat(tr.x);
+        const dy = y + 16;
+        links.append(s('line', { class: 'double', x1: Math.min(...xs) - 10, y1: dy, x2: Math.max(...xs) + 10, y2: dy }));
+        links.append(s('line', { class: 'double', x1: Math.min(...xs) - 10, y1: dy + 3, x2: Math.max(...xs) + 10, y2: dy + 3 }));
+        links.append(s('path', { class: 'link', d: `M${tr.x},${y} V${dy}` }));
+        for (const m of tr.fwd) links.append(s('path', { class: 'link', d: `M${m.x},${dy + 3} V${at(m).top}` }));
+      } else {
+        for (const m of tr.fwd) links.append(s('path', { class: 'link', d: `M${tr.x},${y} V${y + 16} H${m.x} V${at(m).top}` }));
+      }
+      if (tr.back.length) {
+        links.append(s('path', { class: 'link', d: `M${tr.x},${y} V${y + 20}` }));
+        g.append(s('text', { class: 'jump', x: tr.x + 6, y: y + 26, text: '↑ ' + tr.back.map((m) => m.st.name).join(', ') }));
+      }
+      g.append(s('line', { class: 'bar', x1: tr.x - 16, y1: y, x2: tr.x + 16, y2: y }));
+      const cond = tr.t.condition || '';
+      const label = (tr.t.name ? tr.t.name + ': ' : '') + (tr.t.priority !== null && tr.t.priority !== undefined ? `(${tr.t.priority}) ` : '') + cond;
+      g.append(s('text', { x: tr.x + 22, y: y + 4, text: label.length > 38 ? label.slice(0, 37) + '…' : label }, s('title', { text: label + ` (line ${tr.t.line})` })));
+      nodes.append(g);
+      // A condition that is one variable is watched, so the transition
+      // that can fire is marked; other conditions mark it enabled only.
+      let pc = null;
+      if (inst && /^[A-Za-z_][A-Za-z0-9_.]*$/.test(cond) && !/^(TRUE|FALSE)$/i.test(cond)) {
+        if (types.has(key(prefix + cond))) pc = prefix + cond;
+        else if (types.has(key(cond))) pc = cond;
+        if (pc) paths.push(pc);
+      }
+      live.trs.push({ g, from: tr.t.from.map(key), pc, cls: null });
+    }
+
+    function update(values) {
+      const active = new Set();
+      for (const st of live.steps) {
+        const on = values.get(st.px) === 'TRUE';
+        if (on) active.add(st.name);
+        if (on !== st.on) { st.g.classList.toggle('active', on); st.on = on; }
+        const t = on ? (values.get(st.pt) || '') : '';
+        if (t !== st.t) { st.time.textContent = t; st.t = t; }
+      }
+      for (const tr of live.trs) {
+        const enabled = tr.from.length > 0 && tr.from.every((f) => active.has(f));
+        const cls = enabled ? (tr.pc && values.get(tr.pc) === 'TRUE' ? 'firable' : 'enabled') : '';
+        if (cls !== tr.cls) {
+          tr.g.classList.remove('enabled', 'firable');
+          if (cls) tr.g.classList.add(cls);
+          tr.cls = cls;
+        }
+      }
+    }
+    return { svg, paths, update };
+  }
+
+  window.SfcChart = { draw, layout };
+})();
