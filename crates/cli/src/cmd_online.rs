@@ -378,8 +378,8 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             "ws"
         };
         eprintln!(
-            "automat: PLC API on {}://{}/api/v1/ (WebSocket {ws}://{}/api/v1/watch); Ctrl-C stops",
-            server.scheme, server.addr, server.addr
+            "automat: PLC API on {}://{}/api/v1/ (WebSocket {ws}://{}/api/v1/watch), web HMI on {}://{}/; Ctrl-C stops",
+            server.scheme, server.addr, server.addr, server.scheme, server.addr
         );
     }
     let modbus = match modbus_server {

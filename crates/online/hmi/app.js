@@ -424,7 +424,7 @@ const Watch = {
         el('td', { class: 'acts' },
           el('button', { type: 'button', disabled: !can, onclick: act('write'), 'aria-label': 'Write ' + path, text: 'Write' }), ' ',
           el('button', { type: 'button', disabled: !can, onclick: act('force'), 'aria-label': 'Force ' + path, text: 'Force' }), ' ',
-          el('button', { type: 'button', disabled: !operator, onclick: act('unforce'), 'aria-label': 'Unforce ' + path, text: 'Unforce' }), ' ',
+          el('button', { type: 'button', disabled: !can, onclick: act('unforce'), 'aria-label': 'Unforce ' + path, text: 'Unforce' }), ' ',
           el('button', { type: 'button', onclick: () => Trends.add(path), 'aria-label': 'Plot ' + path, text: 'Plot' }), ' ',
           el('button', { type: 'button', onclick: () => this.remove(path), 'aria-label': 'Remove ' + path, text: '✕' })));
       this.rows.set(path, { tr, value, forced: null, text: null, invalid: null });
@@ -668,7 +668,8 @@ const Trends = {
     const Y = (n) => numBottom - (n - lo) / (hi - lo) * (numBottom - numTop);
     if (kinds.includes('num')) {
       // TIME values (step times, timers) are labelled as durations.
-      const times = kinds.every((k, i) => k !== 'num' || /^L?T#/i.test(this.rows[this.rows.length - 1][1][i]));
+      const newest = this.rows.length ? this.rows[this.rows.length - 1][1] : [];
+      const times = newest.length > 0 && kinds.every((k, i) => k !== 'num' || /^L?T#/i.test(newest[i]));
       const label = (n) => times ? duration(Math.round(n / 1e6) * 1e6) : fmt(n);
       ctx.fillStyle = '#5d6675';
       ctx.fillText(label(hi), 8, numTop + 10); ctx.fillText(label(lo), 8, numBottom);

@@ -82,7 +82,7 @@
     svg.append(in1, xfer, drain);
     const liq1 = s('rect', { class: 'liquid', x: T1.x + 2, width: T1.w - 4, y: T1.y + T1.h, height: 0 });
     const liq2 = s('rect', { class: 'liquid', x: T2.x + 2, width: T2.w - 4, y: T2.y + T2.h, height: 0 });
-    svg.append(liq1, liq2, s('rect', { class: 'tank', x: T1.x, y: T1.y, width: T1.w, height: T1.h, fill: 'none' }), s('rect', { class: 'tank', x: T2.x, y: T2.y, width: T2.w, height: T2.h, fill: 'none' }));
+    svg.append(liq1, liq2, s('rect', { class: 'tank', x: T1.x, y: T1.y, width: T1.w, height: T1.h }), s('rect', { class: 'tank', x: T2.x, y: T2.y, width: T2.w, height: T2.h }));
     let zig = `M${T1.x + 30},${T1.y + T1.h - 18}`;
     for (let i = 0; i < 10; i++) zig += ` l7,${i % 2 ? 10 : -10} l7,${i % 2 ? -10 : 10}`;
     const heater = s('path', { class: 'heater', d: zig });
@@ -135,8 +135,8 @@
 
   // Three trains on 1 m tracks with end sensors and buffer stops 5 cm out.
   function trains() {
-    const X = (m) => 70 + m * 420;
-    const svg = s('svg', { viewBox: '0 0 560 320', role: 'img', 'aria-label': 'Trains mimic' });
+    const X = (m) => 110 + m * 390;
+    const svg = s('svg', { viewBox: '0 0 660 320', role: 'img', 'aria-label': 'Trains mimic' });
     const rows = [1, 2, 3].map((i) => {
       const y = 20 + i * 80;
       svg.append(s('line', { class: 'track', x1: X(-0.05), y1: y + 12, x2: X(1.05), y2: y + 12 }),
