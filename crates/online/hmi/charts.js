@@ -14,7 +14,7 @@
 
 (function () {
   const NS = 'http://www.w3.org/2000/svg';
-  const STEP_W = 110, STEP_H = 44, COL = 190, ACT_W = 190, ACT_ROW = 18, GAP = 34;
+  const STEP_W = 110, STEP_H = 44, ACT_W = 190, ACT_ROW = 18, GAP = 34;
 
   function s(tag, attrs, ...children) {
     const e = document.createElementNS(NS, tag);
@@ -29,6 +29,8 @@
   const key = (n) => n.toLowerCase();
 
   function layout(chart) {
+    // Columns leave room for the action tables beside the steps.
+    const COL = chart.steps.some((st) => st.actions.length) ? STEP_W + ACT_W + 60 : 190;
     const steps = new Map();
     chart.steps.forEach((st, i) => steps.set(key(st.name), { st, i, level: null, x: 0 }));
     const trs = chart.transitions.map((t, i) => ({ t, i, level: null, x: 0, back: [] }));
@@ -148,7 +150,9 @@
       }
       nodes.append(g);
       const px = prefix + n.st.name + '.X', pt = prefix + n.st.name + '.T';
-      if (inst) paths.push(px, pt);
+      // Only paths the program has (a macro body's steps may not be
+      // readable by these names): a refused path would stop the others.
+      if (inst && (!types.size || types.has(key(px)))) paths.push(px, pt);
       live.steps.push({ g, time, px, pt, name: key(n.st.name), on: null, t: null });
     }
 
@@ -215,6 +219,20 @@
           tr.cls = cls;
         }
       }
+    }
+    // Macro-step bodies, each drawn as a chart of its own below.
+    const bodies = c.steps.filter((st) => st.body && st.body.chart).map((st) => draw({
+      pou: `${chart.pou}: macro-step ${st.name}${st.body.exit ? ' (exit ' + st.body.exit + ')' : ''}`,
+      chart: st.body.chart,
+    }, inst));
+    if (bodies.length) {
+      const wrap = document.createElement('div');
+      wrap.append(svg, ...bodies.map((b) => b.svg));
+      return {
+        svg: wrap,
+        paths: paths.concat(...bodies.map((b) => b.paths)),
+        update(values) { update(values); for (const b of bodies) b.update(values); },
+      };
     }
     return { svg, paths, update };
   }

@@ -60,3 +60,29 @@ pub async fn mimic_js() -> Response {
 pub async fn app_css() -> Response {
     asset("text/css; charset=utf-8", APP_CSS)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every file the page loads is one the server embeds and routes, and
+    /// the page loads nothing from elsewhere (the CSP would block it).
+    #[test]
+    fn the_page_loads_only_its_own_files() {
+        for file in [
+            "/hmi/app.js",
+            "/hmi/charts.js",
+            "/hmi/mimic.js",
+            "/hmi/app.css",
+        ] {
+            assert!(INDEX.contains(&format!("\"{file}\"")), "{file}");
+        }
+        for text in [INDEX, APP_JS, CHARTS_JS, MIMIC_JS, APP_CSS] {
+            assert!(!text.contains("http://") || text.contains("http://www.w3.org/2000/svg"));
+            assert!(!text.contains("https://"));
+        }
+        // No inline script or style attribute the policy would refuse.
+        assert!(!INDEX.contains("<script>") && !INDEX.contains(" style="));
+        assert!(!INDEX.contains(" onclick="));
+    }
+}
