@@ -80,13 +80,16 @@ fn crane() -> PathBuf {
     dir
 }
 
-/// 200 counters that all change every scan, for the update-rate figure.
+/// 200 counters that all change every scan, for the update-rate figure,
+/// and a division by zero when `trip` is written, for the fault's display.
 fn counters() -> PathBuf {
     let dir = temp("load");
     std::fs::write(
         dir.join("load.st"),
-        "PROGRAM Load\nVAR\n    v : ARRAY[1..200] OF DINT;\n    i : INT;\nEND_VAR\n\
-         FOR i := 1 TO 200 DO\n    v[i] := v[i] + i;\nEND_FOR;\nEND_PROGRAM\n",
+        "PROGRAM Load\nVAR\n    v : ARRAY[1..200] OF DINT;\n    i : INT;\n    trip : BOOL;\n    \
+         zero : DINT;\n    q : DINT;\nEND_VAR\n\
+         FOR i := 1 TO 200 DO\n    v[i] := v[i] + i;\nEND_FOR;\n\
+         IF trip THEN\n    q := v[1] / zero;\nEND_IF;\nEND_PROGRAM\n",
     )
     .expect("load.st");
     dir
@@ -166,7 +169,7 @@ fn the_hmi_in_headless_chromium() {
     if std::env::var_os("UPDATE_DOCS").is_some() {
         let docs = root().join("docs/hmi");
         std::fs::create_dir_all(&docs).expect("docs/hmi");
-        for view in ["overview", "watch", "charts", "trends", "plant"] {
+        for view in ["overview", "watch", "charts", "trends", "plant", "fault"] {
             let name = format!("{view}.png");
             std::fs::copy(shots.join(&name), docs.join(&name)).expect("screenshot");
         }

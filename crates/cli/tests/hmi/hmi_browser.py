@@ -261,7 +261,7 @@ def crane(d, base, token, shots):
     check("no script errors in the console", not errors, errors)
 
 
-def load(d, base, token):
+def load(d, base, token, shots):
     api = Api(base, token)
     tree = requests.get(base + "/api/v1/symbols", headers=api.h, timeout=30).json()["symbols"]
     leaves = []
@@ -303,13 +303,26 @@ def load(d, base, token):
           (plc, lag))
     check("the last value is shown", shown.lstrip("-").isdigit(), shown)
 
+    # A runtime fault: the overview shows it with its site.
+    r = requests.post(base + "/api/v1/write", headers=api.h, json={"path": "Load.trip", "value": True}, timeout=30)
+    check("trip written", r.status_code == 200, r.text)
+    tab(d, "overview")
+    shown = wait(d, "fault", lambda: d.find_element(By.ID, "ov-fault").is_displayed())
+    msg = d.find_element(By.ID, "ov-fault-message").text
+    site = d.find_element(By.ID, "ov-fault-site").text
+    check("the overview shows the fault and its site", shown and msg.startswith("division by zero")
+          and site.endswith("/load.st:13:10 in Load (task Load, program instance Load, PLC time " + site.split("PLC time ")[-1])
+          and "load.st:13:10 in Load (task Load, program instance Load, PLC time T#" in site, (msg, site))
+    check("and the state", d.find_element(By.ID, "state").text.lower() == "fault")
+    d.save_screenshot(os.path.join(shots, "fault.png"))
+
 
 def main():
     crane_url, crane_token, load_url, load_token, shots = sys.argv[1:6]
     d = browser()
     try:
         crane(d, crane_url, crane_token, shots)
-        load(d, load_url, load_token)
+        load(d, load_url, load_token, shots)
     finally:
         d.quit()
     print(f"{passed} passed, {failed} failed")
