@@ -469,6 +469,7 @@ async function refresh() {
 async function loadSymbols() {
   const r = await api('GET', '/api/v1/symbols');
   S.symbols = r.symbols;
+  Watch.treeBuilt = false;
   S.types = new Map(); S.leaves = [];
   const walk = (n) => {
     S.types.set(n.path.toLowerCase(), { type: n.type, writable: n.writable });

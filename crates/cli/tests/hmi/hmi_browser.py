@@ -253,6 +253,17 @@ def crane(d, base, token, shots):
     time.sleep(0.3)
     d.save_screenshot(os.path.join(shots, "overview.png"))
 
+    # A tablet (820x1180, portrait): one column, nothing wider than the screen.
+    d.set_window_size(820, 1180)
+    wide = {}
+    for view in ["overview", "watch", "charts", "trends", "plant"]:
+        tab(d, view)
+        time.sleep(0.2)
+        wide[view] = d.execute_script("return document.documentElement.scrollWidth - window.innerWidth")
+    check("on a tablet no view is wider than the screen", all(v <= 0 for v in wide.values()), wide)
+    d.set_window_size(1366, 768)
+    tab(d, "overview")
+
     # Keyboard: the tabs are real buttons in the tab order.
     d.find_element(By.ID, "tab-overview").send_keys("\ue014")  # ArrowRight
     check("arrow keys move between views", d.find_element(By.ID, "watch").is_displayed())
