@@ -28,6 +28,99 @@
 
   const key = (n) => n.toLowerCase();
 
+  /** The number a value's text stands for (BOOL as 1/0, INT, REAL, TIME
+   * in ns), or null. */
+  function num(text) {
+    if (text === undefined || text === null) return null;
+    const u = String(text).toUpperCase();
+    if (u === 'TRUE') return 1;
+    if (u === 'FALSE') return 0;
+    const t = /^L?T(?:IME)?#(-)?(.*)$/.exec(u);
+    if (t) {
+      let ns = 0, seen = false;
+      for (const [, n, unit] of t[2].replace(/_/g, '').matchAll(/([0-9.]+)(D|H|MS|M|S|US|NS)/g)) {
+        ns += parseFloat(n) * { D: 86400e9, H: 3600e9, M: 60e9, S: 1e9, MS: 1e6, US: 1e3, NS: 1 }[unit];
+        seen = true;
+      }
+      return seen ? (t[1] ? -ns : ns) : null;
+    }
+    const n = Number(u.replace(/^[A-Z_]+#/, '').replace(/_/g, ''));
+    return Number.isFinite(n) ? n : null;
+  }
+
+  /** A transition condition as the HMI can evaluate it from watched
+   * values: variables, TRUE/FALSE, numbers and durations, NOT, AND/&, XOR,
+   * OR, comparisons and parentheses (IEC precedence). `resolve` gives a
+   * name's path or null; anything else (calls, arithmetic, names the
+   * program does not have) gives null: the transition is then only
+   * marked enabled, never guessed. */
+  function compile(text, resolve) {
+    const toks = [];
+    const re = /\s*(>=|<=|<>|[()&<>=]|L?T(?:IME)?#[-0-9A-Za-z_.]+|[0-9][0-9_.]*(?:[eE][-+]?[0-9]+)?|[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*)/y;
+    let at = 0;
+    const src = text.trim();
+    while (at < src.length) {
+      re.lastIndex = at;
+      const m = re.exec(src);
+      if (!m) return null;
+      toks.push(m[1]);
+      at = re.lastIndex;
+      while (at < src.length && /\s/.test(src[at])) at++;
+    }
+    let i = 0;
+    const paths = [];
+    const peek = () => (toks[i] || '').toUpperCase();
+    const fail = () => { throw new Error('not evaluable'); };
+    function primary() {
+      const t = toks[i++];
+      if (t === undefined) fail();
+      if (t === '(') { const e = or(); if (toks[i++] !== ')') fail(); return e; }
+      const u = t.toUpperCase();
+      if (u === 'TRUE' || u === 'FALSE' || /^[0-9]/.test(t) || /^L?T(IME)?#/.test(u)) {
+        const v = num(t);
+        if (v === null) fail();
+        return () => v;
+      }
+      if (['AND', 'OR', 'XOR', 'NOT', 'MOD'].includes(u)) fail();
+      const p = resolve(t);
+      if (!p) fail();
+      paths.push(p);
+      return (values) => num(values.get(p));
+    }
+    function unary() {
+      if (peek() === 'NOT') { i++; const e = unary(); return (v) => { const x = e(v); return x === null ? null : (x ? 0 : 1); }; }
+      return primary();
+    }
+    const ops = { '>=': (a, b) => a >= b, '<=': (a, b) => a <= b, '>': (a, b) => a > b, '<': (a, b) => a < b, '=': (a, b) => a === b, '<>': (a, b) => a !== b };
+    function cmp() {
+      const a = unary();
+      const op = ops[peek()];
+      if (!op) return a;
+      i++;
+      const b = unary();
+      return (v) => { const x = a(v), y = b(v); return x === null || y === null ? null : (op(x, y) ? 1 : 0); };
+    }
+    const chain = (next, names, f) => () => {
+      let e = next();
+      while (names.includes(peek())) {
+        i++;
+        const l = e, r = next();
+        e = (v) => { const x = l(v), y = r(v); return x === null || y === null ? null : f(x !== 0, y !== 0) ? 1 : 0; };
+      }
+      return e;
+    };
+    const and = chain(cmp, ['AND', '&'], (a, b) => a && b);
+    const xor = chain(and, ['XOR'], (a, b) => a !== b);
+    const or = chain(xor, ['OR'], (a, b) => a || b);
+    try {
+      const e = or();
+      if (i !== toks.length) return null;
+      return { paths, value: (values) => { const x = e(values); return x === null ? null : x !== 0; } };
+    } catch (_) {
+      return null;
+    }
+  }
+
   function layout(chart) {
     // Columns leave room for the action tables beside the steps.
     const COL = chart.steps.some((st) => st.actions.length) ? STEP_W + ACT_W + 60 : 190;
@@ -190,15 +283,12 @@
       const label = (tr.t.name ? tr.t.name + ': ' : '') + (tr.t.priority !== null && tr.t.priority !== undefined ? `(${tr.t.priority}) ` : '') + cond;
       g.append(s('text', { x: tr.x + 22, y: y + 4, text: label.length > 38 ? label.slice(0, 37) + '…' : label }, s('title', { text: label + ` (line ${tr.t.line})` })));
       nodes.append(g);
-      // A condition that is one variable is watched, so the transition
-      // that can fire is marked; other conditions mark it enabled only.
-      let pc = null;
-      if (inst && /^[A-Za-z_][A-Za-z0-9_.]*$/.test(cond) && !/^(TRUE|FALSE)$/i.test(cond)) {
-        if (types.has(key(prefix + cond))) pc = prefix + cond;
-        else if (types.has(key(cond))) pc = cond;
-        if (pc) paths.push(pc);
-      }
-      live.trs.push({ g, from: tr.t.from.map(key), pc, cls: null });
+      // The condition's variables are watched and the condition
+      // evaluated, so a transition that can fire is marked.
+      const resolve = (name) => types.has(key(prefix + name)) ? prefix + name : types.has(key(name)) ? name : null;
+      const test = inst ? compile(cond, resolve) : null;
+      if (test) paths.push(...test.paths);
+      live.trs.push({ g, from: tr.t.from.map(key), test, cls: null });
     }
 
     function update(values) {
@@ -212,7 +302,7 @@
       }
       for (const tr of live.trs) {
         const enabled = tr.from.length > 0 && tr.from.every((f) => active.has(f));
-        const cls = enabled ? (tr.pc && values.get(tr.pc) === 'TRUE' ? 'firable' : 'enabled') : '';
+        const cls = enabled ? (tr.test && tr.test.value(values) === true ? 'firable' : 'enabled') : '';
         if (cls !== tr.cls) {
           tr.g.classList.remove('enabled', 'firable');
           if (cls) tr.g.classList.add(cls);
@@ -237,5 +327,5 @@
     return { svg, paths, update };
   }
 
-  window.SfcChart = { draw, layout };
+  window.SfcChart = { draw, layout, compile };
 })();

@@ -180,6 +180,18 @@ def crane(d, base, token, shots):
     check("the crane chart: GS1 active", v, active())
     steps = d.execute_script("return document.querySelectorAll('#chart-area g.step').length")
     check("every step drawn", steps == 8, steps)
+    # Conditions the chart evaluates to mark a transition that can fire.
+    got = d.execute_script("""
+        const names = new Set(['ctrl.startedge.q', 'ctrl.l1', 'ctrl.l3', 'ctrl.gs2.t']);
+        const resolve = (n) => names.has(('ctrl.' + n).toLowerCase()) ? 'Ctrl.' + n : null;
+        const v = new Map([['Ctrl.startEdge.Q', 'TRUE'], ['Ctrl.l1', 'TRUE'], ['Ctrl.l3', 'FALSE'], ['Ctrl.GS2.t', 'T#3s']]);
+        return ['startEdge.Q AND l1 AND l3', 'startEdge.Q AND (l1 OR l3)', 'NOT l3 & l1', 'GS2.t >= T#2s',
+                'GS2.t >= T#5s', '%X1.T >= T#2s', 'unknown AND l1', 'l1 + 1'].map((c) => {
+            const e = SfcChart.compile(c, resolve);
+            return e === null ? null : e.value(v);
+        });""")
+    check("conditions evaluated from watched values (or left alone)",
+          got == [False, True, True, True, False, None, None, None], got)
     d.save_screenshot(os.path.join(shots, "charts-before.png"))
 
     # Press Pornire in the plant view (the momentary button, held), step.
