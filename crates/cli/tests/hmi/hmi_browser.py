@@ -21,7 +21,7 @@ import requests
 from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
-from selenium.webdriver.support.ui import WebDriverWait
+from selenium.webdriver.support.ui import Select, WebDriverWait
 
 passed = 0
 failed = 0
@@ -83,6 +83,12 @@ def row_value(d, path):
     return d.execute_script(
         "const r = document.querySelector(`#wl-rows tr[data-path='${arguments[0]}']`);"
         "return r ? [r.querySelector('td.value').textContent, r.classList.contains('forced')] : null;", path)
+
+
+def shot(d, path):
+    """A screenshot without the passing status message."""
+    d.execute_script("document.getElementById('message').hidden = true")
+    d.save_screenshot(path)
 
 
 def console_errors(d):
@@ -162,7 +168,7 @@ def crane(d, base, token, shots):
     check("the program sees it", api.read("Ctrl.l4") == {"Ctrl.l4": "TRUE"})
     color = d.execute_script("return getComputedStyle(document.querySelector(\"#wl-rows tr[data-path='Ctrl.l4'] td.value\")).color")
     check("forced values are styled apart", color == "rgb(179, 38, 30)", color)
-    d.save_screenshot(os.path.join(shots, "watch.png"))
+    shot(d, os.path.join(shots, "watch.png"))
     d.find_element(By.CSS_SELECTOR, "button[aria-label='Unforce Ctrl.l4']").click()
     api.step(1)
     v = wait(d, "unforced", lambda: row_value(d, "Ctrl.l4") == ["FALSE", False])
@@ -170,6 +176,21 @@ def crane(d, base, token, shots):
     lists = d.execute_script("return localStorage.getItem('automat.hmi.watch.crane')")
     check("the watch list is kept per project in the browser",
           json.loads(lists)["lists"]["Watch 1"][:2] == ["Ctrl.GS1.t", "Ctrl.l4"], lists)
+
+    # A second named list, then back to the first.
+    d.find_element(By.ID, "wl-new").click()
+    alert = wait(d, "prompt", lambda: d.switch_to.alert)
+    alert.send_keys("Motors")
+    alert.accept()
+    d.find_element(By.ID, "wl-add-path").send_keys("Ctrl.M1D")
+    d.find_element(By.ID, "wl-add").click()
+    rows = d.execute_script("return [...document.querySelectorAll('#wl-rows tr')].map(r => r.dataset.path)")
+    stored = json.loads(d.execute_script("return localStorage.getItem('automat.hmi.watch.crane')"))
+    check("several named watch lists", rows == ["Ctrl.M1D"] and sorted(stored["lists"]) == ["Motors", "Watch 1"]
+          and stored["current"] == "Motors", (rows, stored))
+    Select(d.find_element(By.ID, "wl-select")).select_by_visible_text("Watch 1")
+    rows = d.execute_script("return document.querySelectorAll('#wl-rows tr').length")
+    check("switching lists shows the other list", rows == 5, rows)
 
     # The chart before the press.
     tab(d, "charts")
@@ -192,7 +213,7 @@ def crane(d, base, token, shots):
         });""")
     check("conditions evaluated from watched values (or left alone)",
           got == [False, True, True, True, False, None, None, None], got)
-    d.save_screenshot(os.path.join(shots, "charts-before.png"))
+    shot(d, os.path.join(shots, "charts-before.png"))
 
     # Press Pornire in the plant view (the momentary button, held), step.
     tab(d, "plant")
@@ -210,7 +231,7 @@ def crane(d, base, token, shots):
     api.step(150)
     check("released, FALSE again", api.read("Ctrl.Pornire") == {"Ctrl.Pornire": "FALSE"})
     time.sleep(0.5)
-    d.save_screenshot(os.path.join(shots, "plant.png"))
+    shot(d, os.path.join(shots, "plant.png"))
     hook = d.execute_script("return document.querySelector('#mimic text.big').textContent")
     check("the mimic shows the hook rising", hook == "x 0.00 m  y 1.49 m", hook)
 
@@ -222,7 +243,7 @@ def crane(d, base, token, shots):
     check("with its step time", t == "T#1s500ms", t)
     firable = d.execute_script("return document.querySelectorAll('#chart-area g.tr.enabled, #chart-area g.tr.firable').length")
     check("its transition marked enabled", firable == 1, firable)
-    d.save_screenshot(os.path.join(shots, "charts.png"))
+    shot(d, os.path.join(shots, "charts.png"))
 
     # Trends: GS2.X as a band, M2S as steps, GS2.T as a line; CSV.
     for p in ["Ctrl.GS2.X", "Ctrl.M2S"]:
@@ -254,7 +275,7 @@ def crane(d, base, token, shots):
         time.sleep(0.02)
     d.execute_script("automatHmi.views.trends.span = 8e9")
     time.sleep(0.5)
-    d.save_screenshot(os.path.join(shots, "trends.png"))
+    shot(d, os.path.join(shots, "trends.png"))
     # Zoom with the wheel over the canvas, pan by keyboard.
     span = d.execute_script("return automatHmi.views.trends.span")
     d.execute_script("document.getElementById('tr-canvas').dispatchEvent(new WheelEvent('wheel', {deltaY: -100, clientX: 700, clientY: 300, bubbles: true, cancelable: true}))")
@@ -263,7 +284,7 @@ def crane(d, base, token, shots):
 
     tab(d, "overview")
     time.sleep(0.3)
-    d.save_screenshot(os.path.join(shots, "overview.png"))
+    shot(d, os.path.join(shots, "overview.png"))
 
     # A tablet (820x1180, portrait): one column, nothing wider than the screen.
     d.set_window_size(820, 1180)
@@ -337,7 +358,7 @@ def load(d, base, token, shots):
           and site.endswith("/load.st:13:10 in Load (task Load, program instance Load, PLC time " + site.split("PLC time ")[-1])
           and "load.st:13:10 in Load (task Load, program instance Load, PLC time T#" in site, (msg, site))
     check("and the state", d.find_element(By.ID, "state").text.lower() == "fault")
-    d.save_screenshot(os.path.join(shots, "fault.png"))
+    shot(d, os.path.join(shots, "fault.png"))
 
 
 def main():
