@@ -235,6 +235,8 @@ codes! {
         "PL7 dialect: step objects `%Xi` are global, so a step number names one step of one chart.";
 
     // ---- PLCopen TC6 XML (automat-plcopen) ----
+    E160 => "VAR_STAT not supported here",
+        "`VAR_STAT` (CODESYS: variables of a function, function block or program that keep their values between calls, one copy shared by every call and every instance) is read with the CODESYS dialect only (`--lib codesys`), in the body of a FUNCTION, FUNCTION_BLOCK or PROGRAM; not yet in a METHOD.";
     E170 => "malformed PLCopen XML",
         "A `.xml` source is not well-formed XML, or its root element is not a PLCopen TC6 `project` (schema 2.01 or 2.0). The message gives the XML parser's reason; the location is where it stopped.";
     E171 => "unsupported PLCopen element",

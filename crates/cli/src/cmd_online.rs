@@ -20,10 +20,10 @@ use crate::cmd_run::{safe_note_of, stop_on_signals, RunArgs};
 use crate::live::{Console, Live, ScaledClock};
 use crate::retain_run::{self, RetainCfg};
 use crate::Outcome;
-use automat_base::{render, SourceMap};
+use automat_base::render;
 use automat_ir::Program;
 use automat_online::{Options, Role, User};
-use automat_project::{bind, build, Sim};
+use automat_project::{bind, Sim};
 use automat_runtime::ScanObserver;
 use automat_runtime::{ClockMode, SafeState};
 use automat_session::{Config, Parts, RetainFile, Session};
@@ -96,34 +96,16 @@ fn load(args: &RunArgs) -> Result<LoadedRun, Outcome> {
 }
 
 fn load_project(args: &RunArgs, toml: &Path) -> Result<LoadedRun, Outcome> {
-    let mut map = SourceMap::new();
-    let project = automat_project::load(toml, &mut map).map_err(|d| {
-        eprint!("{}", render::render_report(&map, &d));
-        Outcome::ProgramErrors
-    })?;
-    let mut libraries = project.libraries.clone();
-    libraries.extend(args.libs.iter().cloned());
-    let name = args.program.clone().or(project.program.clone());
-    let mut program = match build::compile(&project.sources, name, &libraries) {
-        Ok((p, warnings)) => {
-            eprint!("{warnings}");
-            p
-        }
-        Err(e) => {
-            eprint!("{}", e.text);
-            return Err(if e.bad_input {
-                Outcome::BadInput
-            } else {
-                Outcome::ProgramErrors
-            });
-        }
-    };
+    let crate::project_run::Compiled {
+        map,
+        project,
+        program,
+        modbus,
+    } = crate::project_run::compile_project(args, toml)?;
     let fail = |d: &[automat_base::Diagnostic]| {
         eprint!("{}", render::render_report(&map, d));
         Outcome::ProgramErrors
     };
-    automat_project::tasks::apply(&project.tasks, &mut program).map_err(|d| fail(&d))?;
-    crate::engines::default_watchdog(&mut program, args.watchdog);
     // The bindings are checked here, where their diagnostics can be shown;
     // the safe state includes every variable an actuator is bound to.
     let plant = project.new_plant().map_err(|d| fail(&d))?;
@@ -143,9 +125,6 @@ fn load_project(args: &RunArgs, toml: &Path) -> Result<LoadedRun, Outcome> {
         _ => automat_project::safe::build(&project, &program, None),
     }
     .map_err(|d| fail(&d))?;
-    let modbus =
-        automat_fieldbus::config::load(&map.get(project.file).text, project.file, &program)
-            .map_err(|d| fail(&d))?;
     Ok(LoadedRun {
         safe,
         cycle_ns: args.cycle_time.unwrap_or(project.cycle_time_ns),

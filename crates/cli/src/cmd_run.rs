@@ -9,18 +9,17 @@ use crate::{files, Outcome};
 use automat_base::{render, Code, Diagnostic, Interner, SourceMap};
 use automat_ir::Program;
 use automat_lower::{lower, LowerOptions};
-use automat_runtime::io::NoIo;
-use automat_runtime::retain::Keeper;
-use automat_runtime::scan::Env;
 use automat_runtime::trace::{Column, Trace};
 use automat_runtime::{
-    resolve, run_safe, timearg, value, ClockMode, Executor, Limit, Place, RunConfig, RunEnd,
-    RunReport, SafeState, ScanObserver, SystemClock,
+    resolve, timearg, value, ClockMode, Limit, Place, SafeState, ScanObserver, SystemClock,
 };
+use automat_session::{Config, End, Final, Parts, RetainFile, Watching};
 use clap::Args;
+use std::cell::RefCell;
 use std::fs::File;
 use std::io::BufWriter;
 use std::path::PathBuf;
+use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
@@ -293,15 +292,6 @@ pub(crate) fn stop_on_signals(stop: &Arc<AtomicBool>) {
     }
 }
 
-/// The note after a stop in the safe state.
-pub(crate) fn safe_note(end: &RunEnd, safe: &SafeState) {
-    match end {
-        RunEnd::Fault(_) => safe_note_of(true, safe),
-        RunEnd::Stopped => safe_note_of(false, safe),
-        _ => {}
-    }
-}
-
 /// The note of a run that ended in the safe state, on a fault or not.
 pub(crate) fn safe_note_of(fault: bool, safe: &SafeState) {
     if fault {
@@ -352,11 +342,12 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
     let traced = trace_columns(&program, &split_trace(&args.trace))?;
     let safe = SafeState::of_program(&program);
     let retain = RetainCfg::of(args, None);
-    let mut engine = crate::engines::build(program, args.engine);
+    retain_run::check(&program, retain.as_ref())?;
+    let mut engine = crate::engines::build(program.clone(), args.engine);
     engine.set_budget(args.max_instructions);
-    retain_run::start(&mut engine, retain.as_ref(), args.cold)?;
+    retain_run::warm(&mut engine, retain.as_ref(), args.cold);
 
-    let mut trace = match &args.trace_file {
+    let trace = match &args.trace_file {
         Some(path) => {
             let file = File::create(path).map_err(|e| {
                 eprintln!("error: {}: {e}", path.display());
@@ -366,7 +357,7 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
                 eprintln!("error: {}: {e}", path.display());
                 Outcome::BadInput
             })?;
-            Some(t)
+            Some(Rc::new(RefCell::new(t)))
         }
         None => None,
     };
@@ -382,64 +373,59 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
         ClockMode::RealTime
     };
     if let Some(rt) = crate::realtime_run::settings(args, None, clock == ClockMode::RealTime)? {
+        // This thread runs the scans.
         crate::realtime_run::enter_here(&rt)?;
     }
     let stop = Arc::new(AtomicBool::new(false));
     if limit == Limit::Unbounded {
         stop_on_signals(&stop);
     }
-
-    let cfg = RunConfig {
+    // The same session as a served PLC, run here to its limit.
+    let config = Config {
         cycle_time_ns: cycle_time,
         clock,
-        limit,
+        monotonic: Box::new(SystemClock::new()),
+        running: true,
+        stop,
+        retain: retain.as_ref().map(|r| RetainFile {
+            path: r.path.clone(),
+            every_ns: r.every_ns,
+        }),
+        safe: Some(safe.clone()),
+        realtime: None,
+        wait_after_fault: false,
     };
-    let mut sys = SystemClock::new();
-    let (mut inputs, mut outputs) = (NoIo, NoIo);
-    let mut none = ();
-    let inner: &mut dyn ScanObserver = match trace.as_mut() {
-        Some(t) => t,
-        None => &mut none,
+    let parts = Parts {
+        exec: Box::new(engine),
+        sim: None,
+        observer: trace
+            .as_ref()
+            .map(|t| Box::new(Watching(Rc::clone(t))) as Box<dyn ScanObserver>),
+        exchange: None,
     };
-    let start_image = engine.image().to_vec();
-    let mut keeper = Keeper::new(
-        engine.program(),
-        &start_image,
-        retain.as_ref().map(|r| r.path.clone()),
-        retain.as_ref().and_then(|r| r.every_ns),
-        inner,
-    );
-    if clock == ClockMode::RealTime {
-        // A scan never waits for the disk.
-        keeper = keeper.in_background();
-    }
-    let mut env = Env {
-        clock: &mut sys,
-        inputs: &mut inputs,
-        outputs: &mut outputs,
-        observer: &mut keeper,
-        stop: &stop,
-    };
-    let report = run_safe(&mut engine, &cfg, &mut env, &safe).map_err(|e| {
-        eprintln!("error: {e}");
-        Outcome::BadInput
-    })?;
-    let saved = retain_run::finish(&mut keeper, retain.as_ref());
-    drop(keeper);
-    finish(args, &engine, trace, &prints, report, saved, &safe)
+    let end = automat_session::run_here(Arc::new(program), config, parts, limit);
+    let trace = trace.and_then(|t| Rc::try_unwrap(t).ok().map(RefCell::into_inner));
+    finish(args, end, trace, &prints, retain.as_ref(), &safe)
 }
 
-/// After the run: trace flushed, values printed, fault reported (RETAIN
-/// was saved: `saved`).
+/// After a batch run: RETAIN saves reported, trace flushed, values
+/// printed, fault reported.
 fn finish(
     args: &RunArgs,
-    engine: &impl automat_runtime::Executor,
+    mut end: Final,
     trace: Option<Trace<BufWriter<File>>>,
     prints: &[(String, Place)],
-    report: RunReport,
-    saved: bool,
+    retain: Option<&RetainCfg>,
     safe: &SafeState,
 ) -> Result<Outcome, Outcome> {
+    let saved = end.retain.take().is_none_or(|saves| {
+        retain_run::report(
+            saves.last,
+            saves.failures,
+            saves.last_error.as_deref(),
+            retain,
+        )
+    });
     let mut outcome = if saved {
         Outcome::Ok
     } else {
@@ -452,26 +438,39 @@ fn finish(
         }
     }
     for (name, place) in prints {
-        println!("{name} = {}", value::format(engine.image(), place));
+        println!("{name} = {}", value::format(&end.image, place));
     }
     if args.stats {
-        eprintln!("{}", report.stats);
+        eprintln!("{}", end.stats);
     }
-    if let RunEnd::Fault(f) = &report.end {
+    if let Some(f) = &end.fault {
         eprintln!("error: runtime fault: {f}");
     }
-    safe_note(&report.end, safe);
-    match report.end {
-        RunEnd::Fault(_) => Ok(Outcome::Fault),
-        RunEnd::Observer(e) => {
+    safe_note_end(end.end, safe);
+    match end.end {
+        End::Fault => Ok(Outcome::Fault),
+        End::Observer => {
             let shown = args
                 .trace_file
                 .as_ref()
                 .map_or(String::new(), |p| format!("{}: ", p.display()));
-            eprintln!("error: {shown}{e}");
+            eprintln!("error: {shown}{}", end.error.unwrap_or_default());
             Ok(Outcome::BadInput)
         }
-        RunEnd::Limit | RunEnd::Stopped | RunEnd::TimeExhausted => Ok(outcome),
+        End::Error => {
+            eprintln!("error: {}", end.error.unwrap_or_default());
+            Err(Outcome::BadInput)
+        }
+        End::Limit | End::Stopped => Ok(outcome),
+    }
+}
+
+/// The note after a session that ended in the safe state.
+pub(crate) fn safe_note_end(end: End, safe: &SafeState) {
+    match end {
+        End::Fault => safe_note_of(true, safe),
+        End::Stopped => safe_note_of(false, safe),
+        _ => {}
     }
 }
 

@@ -9,22 +9,20 @@
 //! typed commands (see [`crate::live`]). `--print` and `--trace` take
 //! variable paths, signal names of the model and `plant.<quantity>`.
 
-use crate::cmd_run::{safe_note, stop_on_signals, RunArgs};
+use crate::cmd_run::{safe_note_end, stop_on_signals, RunArgs};
 use crate::live::{Live, ScaledClock};
 use crate::retain_run::{self, RetainCfg};
 use crate::Outcome;
 use automat_base::{render, FileId, SourceMap, Span};
 use automat_ir::Program;
 use automat_plant::Plant;
-use automat_project::{bind, build, PlantExec, Project, Sim};
-use automat_runtime::io::NoIo;
-use automat_runtime::retain::Keeper;
-use automat_runtime::scan::Env;
+use automat_project::{bind, build, Project, Sim};
 use automat_runtime::trace::{csv_cell, Column};
-use automat_runtime::{run_safe, ClockMode, Executor, Limit, RunConfig, RunEnd, ScanObserver};
+use automat_runtime::{ClockMode, Executor, Limit, ScanObserver};
 use automat_scenario::ast::Name;
 use automat_scenario::check::{Ref, Scope};
 use automat_scenario::{Judge, NoPlant, Prepared};
+use automat_session::{Config, End, Parts, RetainFile, Watching};
 use std::cell::RefCell;
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -134,7 +132,11 @@ struct Loaded {
     plant: Box<dyn Plant>,
 }
 
-fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
+/// The project file read and its program compiled with the command line's
+/// `--program`, `--lib` and `--watchdog`, `[tasks]` applied and `[modbus]`
+/// checked (its errors are the project's in every run, though only a
+/// real-time run opens a socket): what every run of a project starts from.
+pub(crate) fn compile_project(args: &RunArgs, toml: &Path) -> Result<Compiled, Outcome> {
     let mut map = SourceMap::new();
     let project = automat_project::load(toml, &mut map).map_err(|d| fail(&map, &d))?;
     for w in &project.warnings {
@@ -158,11 +160,34 @@ fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
         }
     };
     automat_project::tasks::apply(&project.tasks, &mut program).map_err(|d| fail(&map, &d))?;
-    // `[modbus]` is checked in every run (its errors are the project's),
-    // though a virtual-clock run opens no socket and exchanges nothing.
-    automat_fieldbus::config::load(&map.get(project.file).text, project.file, &program)
-        .map_err(|d| fail(&map, &d))?;
+    let modbus =
+        automat_fieldbus::config::load(&map.get(project.file).text, project.file, &program)
+            .map_err(|d| fail(&map, &d))?;
     crate::engines::default_watchdog(&mut program, args.watchdog);
+    Ok(Compiled {
+        map,
+        project,
+        program,
+        modbus,
+    })
+}
+
+/// A project ready to run ([`compile_project`]).
+pub(crate) struct Compiled {
+    pub map: SourceMap,
+    pub project: Project,
+    pub program: Program,
+    /// `[modbus]`, checked against the program.
+    pub modbus: automat_fieldbus::config::Config,
+}
+
+fn load(args: &RunArgs, toml: &Path) -> Result<Loaded, Outcome> {
+    let Compiled {
+        map,
+        project,
+        program,
+        ..
+    } = compile_project(args, toml)?;
     // Without [plant] the program runs against no plant.
     let plant = project.new_plant().map_err(|d| fail(&map, &d))?;
     Ok(Loaded {
@@ -337,54 +362,55 @@ fn run_loaded(args: &RunArgs, loaded: Loaded, from_project: bool) -> Result<Outc
         live,
         judge,
     };
-    let mut exec = PlantExec::new(engine, Rc::clone(&sim));
     if let Some(j) = &mut observer.judge {
-        j.start(exec.image(), &sim.borrow());
+        j.start(engine.image(), &sim.borrow());
     }
-    let cfg = RunConfig {
-        cycle_time_ns: args.cycle_time.unwrap_or(project.cycle_time_ns),
+    let observer = Rc::new(RefCell::new(observer));
+    let cycle_time_ns = args.cycle_time.unwrap_or(project.cycle_time_ns);
+    // The same session as a served PLC (forces, RETAIN keeping, safe
+    // state), run here to its limit.
+    let config = Config {
+        cycle_time_ns,
         clock,
-        limit,
+        monotonic: Box::new(ScaledClock::new(args.speed)),
+        running: true,
+        stop: Arc::clone(&stop),
+        retain: retain.as_ref().map(|r| RetainFile {
+            path: r.path.clone(),
+            every_ns: r.every_ns,
+        }),
+        safe: Some(safe.clone()),
+        realtime: None,
+        wait_after_fault: false,
     };
-    let mut sys = ScaledClock::new(args.speed);
-    let (mut inputs, mut outputs) = (NoIo, NoIo);
-    let (report, saved) = {
-        let start_image = exec.image().to_vec();
-        let mut keeper = Keeper::new(
-            &program,
-            &start_image,
-            retain.as_ref().map(|r| r.path.clone()),
-            retain.as_ref().and_then(|r| r.every_ns),
-            &mut observer,
-        );
-        if clock == ClockMode::RealTime {
-            // A scan never waits for the disk.
-            keeper = keeper.in_background();
-        }
-        let mut env = Env {
-            clock: &mut sys,
-            inputs: &mut inputs,
-            outputs: &mut outputs,
-            observer: &mut keeper,
-            stop: &stop,
-        };
-        let report = run_safe(&mut exec, &cfg, &mut env, &safe).map_err(|e| {
-            eprintln!("error: {e}");
-            Outcome::BadInput
-        })?;
-        (report, retain_run::finish(&mut keeper, retain.as_ref()))
+    let parts = Parts {
+        exec: Box::new(engine),
+        sim: Some(Rc::clone(&sim)),
+        observer: Some(Box::new(Watching(Rc::clone(&observer)))),
+        exchange: None,
     };
-    if matches!(report.end, RunEnd::Fault(_) | RunEnd::Stopped) {
-        // The PLC is in its safe state: the plant is told so, with the
-        // values the runtime gave the variables its actuators are bound to.
-        sim.borrow_mut().safe_state(exec.image());
+    let mut end = automat_session::run_here(Arc::new(program.clone()), config, parts, limit);
+    let Some(mut observer) = Rc::try_unwrap(observer).ok().map(RefCell::into_inner) else {
+        eprintln!("error: the run's observer is still in use");
+        return Err(Outcome::BadInput);
+    };
+    let saved = end.retain.take().is_none_or(|saves| {
+        retain_run::report(
+            saves.last,
+            saves.failures,
+            saves.last_error.as_deref(),
+            retain.as_ref(),
+        )
+    });
+    if matches!(end.end, End::Fault | End::Stopped) {
+        // The PLC is in its safe state and the session told the plant so.
         // The plant is a physical machine: in virtual time it runs on to the
         // run's end (--duration, the scenario's duration) in the safe state,
         // so `--print plant.<quantity>` shows where it came to rest. The
         // PLC's image stays as the safe state left it.
-        if let (Limit::Duration(end), ClockMode::Virtual) = (&cfg.limit, clock) {
-            let mut image = exec.image().to_vec();
-            sim.borrow_mut().sync(*end, &mut image);
+        if let (Limit::Duration(end_ns), ClockMode::Virtual) = (&limit, clock) {
+            let mut image = end.image.clone();
+            sim.borrow_mut().sync(*end_ns, &mut image);
         }
     }
     let mut outcome = if saved {
@@ -398,17 +424,17 @@ fn run_loaded(args: &RunArgs, loaded: Loaded, from_project: bool) -> Result<Outc
         // A run cut short of the scenario's duration (--cycles, a shorter
         // --duration) judges only what was decided before its end.
         let scn_ns = scenario_ns.unwrap_or(0);
-        let covered = match cfg.limit {
+        let covered = match limit {
             Limit::Duration(d) => d >= scn_ns,
             Limit::Cycles(n) => {
-                i64::try_from(n).map_or(true, |n| n.saturating_mul(cfg.cycle_time_ns) >= scn_ns)
+                i64::try_from(n).map_or(true, |n| n.saturating_mul(cycle_time_ns) >= scn_ns)
             }
             Limit::Unbounded => true,
         };
-        let complete = covered && matches!(report.end, RunEnd::Limit | RunEnd::TimeExhausted);
+        let complete = covered && end.end == End::Limit;
         let open = j.open();
         let failures = if complete {
-            j.finish(exec.image(), &sim.borrow())
+            j.finish(&end.image, &sim.borrow())
         } else {
             j.failures()
         };
@@ -444,7 +470,7 @@ fn run_loaded(args: &RunArgs, loaded: Loaded, from_project: bool) -> Result<Outc
     {
         let s = sim.borrow();
         for (name, r) in args.print.iter().zip(&prints) {
-            println!("{} = {}", name.trim(), r.show(exec.image(), &s));
+            println!("{} = {}", name.trim(), r.show(&end.image, &s));
         }
         for (at, e) in &s.errors {
             eprintln!(
@@ -454,18 +480,18 @@ fn run_loaded(args: &RunArgs, loaded: Loaded, from_project: bool) -> Result<Outc
         }
     }
     if args.stats {
-        eprintln!("{}", report.stats);
+        eprintln!("{}", end.stats);
     }
-    if let RunEnd::Fault(f) = &report.end {
+    if let Some(f) = &end.fault {
         eprintln!("error: runtime fault: {f}");
     }
-    safe_note(&report.end, &safe);
-    match report.end {
-        RunEnd::Fault(_) => Ok(Outcome::Fault),
-        RunEnd::Observer(e) => {
-            eprintln!("error: {e}");
+    safe_note_end(end.end, &safe);
+    match end.end {
+        End::Fault => Ok(Outcome::Fault),
+        End::Observer | End::Error => {
+            eprintln!("error: {}", end.error.unwrap_or_default());
             Ok(Outcome::BadInput)
         }
-        RunEnd::Limit | RunEnd::Stopped | RunEnd::TimeExhausted => Ok(outcome),
+        End::Limit | End::Stopped => Ok(outcome),
     }
 }

@@ -6,7 +6,7 @@
 use crate::cmd_run::RunArgs;
 use crate::Outcome;
 use automat_ir::Program;
-use automat_runtime::retain::{self, Keeper, Loaded};
+use automat_runtime::retain::{self, Loaded};
 use automat_runtime::Executor;
 use std::path::PathBuf;
 
@@ -89,14 +89,6 @@ pub(crate) fn warm<E: Executor>(engine: &mut E, cfg: Option<&RetainCfg>, cold: b
         Loaded::Warm | Loaded::NoFile => {}
         Loaded::Cold(why) => eprintln!("warning: {}: {why}; cold start", cfg.path.display()),
     }
-}
-
-/// After the run: the last consistent snapshot saved, and any failed
-/// periodic save reported. `false` when the final save failed (with
-/// `optional`, that is a warning and `true`).
-pub(crate) fn finish(k: &mut Keeper, cfg: Option<&RetainCfg>) -> bool {
-    let last = k.finish();
-    report(last, k.failures, k.last_error.as_deref(), cfg)
 }
 
 /// The messages of the saves of a run: `last` the final save, `failures`

@@ -158,6 +158,23 @@ fn the_api_contract_from_a_python_client_on_the_virtual_clock() {
     interrupt(plc);
 }
 
+/// FST online status: each STL program's run state and step, the operands
+/// by FST name and symbol, through the same API (the MPS station in STL).
+#[test]
+fn festo_stl_programs_online_status() {
+    python_ready();
+    let dir = std::env::temp_dir().join(format!("automat-online-fst-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let src = root().join("examples/festo-distribution-stl");
+    for f in ["automat.toml", "allocation.txt", "P0.stl", "P1.stl"] {
+        std::fs::copy(src.join(f), dir.join(f)).expect("copy");
+    }
+    let plc = start(&dir, &["--listen", "0", "--virtual-clock"]);
+    client("fst", &plc);
+    interrupt(plc);
+}
+
 #[test]
 fn the_plant_is_read_and_operated_through_the_api() {
     python_ready();

@@ -137,3 +137,90 @@ impl Uses<'_> {
         }
     }
 }
+
+/// `VAR_STAT` (CODESYS): a variable of a POU that keeps its value from one
+/// call to the next, one copy for every call and every instance. Each
+/// becomes a hidden global `__STAT_<POU>_<name>` (its initial value set
+/// once, at a cold start, like any global) and the body's uses of the name
+/// are renamed to it; [`implicit_externals`], run after this, gives the
+/// POU the VAR_EXTERNAL that makes the global visible. A VAR_STAT in a
+/// METHOD or in a function block with methods is E160 (not yet).
+pub fn static_vars(
+    units: &mut [SourceUnit],
+    is_user: &dyn Fn(&SourceUnit) -> bool,
+    interner: &mut automat_base::Interner,
+    diags: &mut Vec<automat_base::Diagnostic>,
+) {
+    for unit in units.iter_mut().filter(|u| is_user(u)) {
+        let mut globals = Vec::new();
+        for item in &mut unit.items {
+            match item {
+                Item::Pou(pou) => {
+                    let (stat, rest): (Vec<VarBlock>, Vec<VarBlock>) =
+                        std::mem::take(&mut pou.var_blocks)
+                            .into_iter()
+                            .partition(|b| b.kind == VarKind::Static);
+                    pou.var_blocks = rest;
+                    if stat.is_empty() {
+                        continue;
+                    }
+                    let owner = interner.name(pou.name.sym).to_string();
+                    let mut renames: HashMap<Symbol, Symbol> = HashMap::new();
+                    for mut block in stat {
+                        for d in &mut block.decls {
+                            for n in &mut d.names {
+                                let hidden = format!("__STAT_{owner}_{}", interner.name(n.sym));
+                                let sym = interner.intern(&hidden);
+                                renames.insert(n.sym, sym);
+                                n.sym = sym;
+                            }
+                        }
+                        block.kind = VarKind::Global;
+                        globals.push(block);
+                    }
+                    let Body::St(stmts) = &mut pou.body;
+                    walk::stmts(stmts, &mut Rename { renames: &renames });
+                }
+                Item::Class(class) => {
+                    let in_methods = class
+                        .methods
+                        .iter()
+                        .flat_map(|m| m.var_blocks.iter())
+                        .chain(class.var_blocks.iter())
+                        .filter(|b| b.kind == VarKind::Static);
+                    for b in in_methods {
+                        diags.push(automat_base::Diagnostic::error(
+                            automat_base::Code::E160,
+                            b.span,
+                            "`VAR_STAT` in a METHOD or a function block with methods is not supported yet: declare the variable in a global variable list",
+                        ));
+                    }
+                }
+                _ => {}
+            }
+        }
+        unit.items.extend(globals.into_iter().map(Item::Globals));
+    }
+}
+
+/// Renames the uses of VAR_STAT variables to their hidden globals.
+struct Rename<'a> {
+    renames: &'a HashMap<Symbol, Symbol>,
+}
+
+impl Visitor for Rename<'_> {
+    fn expr(&mut self, e: &mut Expr) {
+        let id = match &mut e.kind {
+            ExprKind::Name(id) => id,
+            // A call of a static FB instance: `counter(IN := x);`.
+            ExprKind::Call { callee, .. } => match &mut callee.kind {
+                ExprKind::Name(id) => id,
+                _ => return,
+            },
+            _ => return,
+        };
+        if let Some(&to) = self.renames.get(&id.sym) {
+            id.sym = to;
+        }
+    }
+}

@@ -354,6 +354,9 @@ pub fn check_sources(
         drop_errors_within(&mut diags, &open);
     }
     if codesys {
+        // VAR_STAT variables become hidden globals first, so the POU gets
+        // their VAR_EXTERNAL below.
+        codesys::static_vars(&mut units, &is_user, interner, &mut diags);
         // Globals of global variable lists need no VAR_EXTERNAL.
         codesys::implicit_externals(&mut units, &is_user);
     }

@@ -93,9 +93,13 @@ pub fn check_range(
             FaultKind::SubrangeViolation,
             format!("value {v} outside {lo}..{hi}"),
         ),
-        CheckKind::Ref => (
+        CheckKind::Ref if v == 0 => (
             FaultKind::Function,
             "dereference of a NULL reference".to_string(),
+        ),
+        CheckKind::Ref => (
+            FaultKind::Function,
+            format!("dereference of an invalid pointer (offset {v}; a target of this type lies at 1..{hi} in the image)"),
         ),
     };
     Err(fault(program, func, Some(site), k, message))

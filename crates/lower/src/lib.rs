@@ -225,6 +225,7 @@ fn lower_as(
         return Err(vec![d]);
     }
     let image_size = align8(layout::narrow(cx.top));
+    patch_ref_checks(&mut funcs, image_size);
     let mut w = image::ImageWriter {
         layout: &mut cx.layout,
         img: vec![0; image_size as usize],
@@ -338,6 +339,25 @@ fn instance_symbols(
             output: v.section == Section::Output,
             spelling: String::new(),
         });
+    }
+}
+
+/// Dereference checks carry `-size` as their upper bound until the image's
+/// size is known: the last offset where a `size`-byte target still fits.
+fn patch_ref_checks(funcs: &mut [Func], image_size: u32) {
+    for f in funcs {
+        for inst in &mut f.code {
+            if let Inst::Check {
+                kind: automat_ir::code::CheckKind::Ref,
+                hi,
+                ..
+            } = inst
+            {
+                if *hi < 0 {
+                    *hi = (i64::from(image_size) + *hi).max(0);
+                }
+            }
+        }
     }
 }
 

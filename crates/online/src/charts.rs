@@ -6,6 +6,7 @@
 use crate::api::{authorize, error};
 use crate::auth::Role;
 use crate::App;
+use automat_ir::Program;
 use automat_project::charts::PouChart;
 use automat_session::Node;
 use axum::extract::{RawQuery, State as Ax};
@@ -13,33 +14,40 @@ use axum::http::{HeaderMap, StatusCode};
 use axum::response::{IntoResponse, Response};
 use serde_json::{json, Value};
 
-/// The paths of the instances of `pou`: FB instances of that type, and
-/// program instances (typed `PROGRAM` in the tree) holding every step of
-/// the chart as a `STEP` member.
-fn instances(nodes: &[Node], pou: &str, steps: &[&str], out: &mut Vec<String>) {
+/// The paths of the FB instances of type `pou` in the tree.
+fn fb_instances(nodes: &[Node], pou: &str, out: &mut Vec<String>) {
     for n in nodes {
-        let holds_steps = !steps.is_empty()
-            && steps.iter().all(|s| {
-                n.children
-                    .iter()
-                    .any(|c| c.ty == "STEP" && c.name.eq_ignore_ascii_case(s))
-            });
-        if n.ty.eq_ignore_ascii_case(pou) || (n.ty == "PROGRAM" && holds_steps) {
+        if n.ty.eq_ignore_ascii_case(pou) {
             out.push(n.path.clone());
         } else {
-            instances(&n.children, pou, steps, out);
+            fb_instances(&n.children, pou, out);
+        }
+    }
+}
+
+/// The paths of the program instances of `pou`, as the configuration's
+/// tasks run them (`PROGRAM Ctrl WITH MainTask : Crane` gives `Ctrl`), in
+/// task order, each once.
+fn program_instances(program: &Program, pou: &str, out: &mut Vec<String>) {
+    for inst in program.tasks.iter().flat_map(|t| &t.programs) {
+        let runs_pou = usize::try_from(inst.func)
+            .ok()
+            .and_then(|f| program.funcs.get(f))
+            .is_some_and(|f| f.name.eq_ignore_ascii_case(pou));
+        if runs_pou && !out.iter().any(|p| p.eq_ignore_ascii_case(&inst.name)) {
+            out.push(inst.name.clone());
         }
     }
 }
 
 /// The answer: every chart with its instances (computed once per server).
-pub fn answer(charts: &[PouChart], tree: &[Node]) -> Value {
+pub fn answer(charts: &[PouChart], program: &Program, tree: &[Node]) -> Value {
     let list: Vec<Value> = charts
         .iter()
         .map(|c| {
             let mut at = Vec::new();
-            let steps: Vec<&str> = c.chart.steps.iter().map(|s| s.name.as_str()).collect();
-            instances(tree, &c.pou, &steps, &mut at);
+            program_instances(program, &c.pou, &mut at);
+            fb_instances(tree, &c.pou, &mut at);
             let mut v = serde_json::to_value(c).unwrap_or(Value::Null);
             v["instances"] = json!(at);
             v

@@ -151,7 +151,7 @@ pub fn start(session: Arc<Session>, opts: Options) -> Result<Server, String> {
     };
     let scheme = if tls.is_some() { "https" } else { "http" };
     let tree = session.symbols("").unwrap_or_default();
-    let charts = Arc::new(Some(charts::answer(&opts.charts, &tree)));
+    let charts = Arc::new(Some(charts::answer(&opts.charts, session.program(), &tree)));
     let tasks: Vec<serde_json::Value> = session
         .program()
         .tasks

@@ -224,7 +224,8 @@ impl Ex<'_> {
 
     fn section(&mut self, o: &mut String, b: &VarBlock) {
         let tag = match b.kind {
-            VarKind::Local => "localVars",
+            // VAR_STAT has no TC6 section; the dialect turns it into globals first.
+            VarKind::Local | VarKind::Static => "localVars",
             VarKind::Input => "inputVars",
             VarKind::Output => "outputVars",
             VarKind::InOut => "inOutVars",

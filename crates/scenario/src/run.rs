@@ -35,19 +35,16 @@ use automat_base::Diagnostic;
 use automat_engine::Engine;
 use automat_iec::format::format_duration;
 use automat_ir::Program;
-use automat_project::{bind, Action, PlantExec, Project, Sim};
-use automat_runtime::io::NoIo;
-use automat_runtime::scan::Env;
+use automat_project::{bind, Action, Project, Sim};
 use automat_runtime::trace::csv_cell;
-use automat_runtime::{
-    run as run_scan, value, ClockMode, Executor, Limit, RunConfig, RunEnd, ScanObserver,
-    SystemClock,
-};
+use automat_runtime::{value, ClockMode, Executor, Limit, ScanObserver, SystemClock};
+use automat_session::{run_here, Config, End, Parts, Watching};
 use std::cell::RefCell;
 use std::collections::VecDeque;
 use std::io::Write;
 use std::rc::Rc;
 use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
 
 /// One failed expectation (or a fault, or a refused plant command).
 #[derive(Clone, Debug, PartialEq)]
@@ -319,6 +316,21 @@ enum Verdict {
 }
 
 impl Judge {
+    /// A judge of nothing (what is left where one was taken out).
+    fn empty() -> Judge {
+        Judge {
+            refs: Vec::new(),
+            vals: Vec::new(),
+            prev: Vec::new(),
+            started: false,
+            checks: Vec::new(),
+            reactions: Vec::new(),
+            failures: Vec::new(),
+            last_ns: 0,
+            duration_ns: 0,
+        }
+    }
+
     /// The names the scenario reads.
     pub fn refs(&self) -> &[Ref] {
         &self.refs
@@ -695,14 +707,17 @@ enum ColSrc {
     Steps(automat_runtime::trace::Column),
 }
 
-struct Observer<W: Write> {
+/// Judges every scan and writes the trace rows into a buffer (the run's
+/// session owns its observer, so it cannot borrow the caller's writer;
+/// the buffer goes to the writer after the run).
+struct Observer {
     sim: Rc<RefCell<Sim>>,
     judge: Judge,
-    trace: Option<(Vec<Column>, W)>,
+    trace: Option<(Vec<Column>, Vec<u8>)>,
     header_written: bool,
 }
 
-impl<W: Write> Observer<W> {
+impl Observer {
     fn write_row(&mut self, now: i64, image: &[u8]) -> Result<(), String> {
         let Some((cols, out)) = &mut self.trace else {
             return Ok(());
@@ -734,7 +749,7 @@ impl<W: Write> Observer<W> {
     }
 }
 
-impl<W: Write> ScanObserver for Observer<W> {
+impl ScanObserver for Observer {
     fn after_scan(&mut self, now: i64, image: &[u8]) -> Result<(), String> {
         self.judge.after_scan(now, image, &self.sim);
         self.write_row(now, image)
@@ -796,7 +811,7 @@ pub fn run<W: Write>(
 /// [`run`] on a given backend `exec` built from `program` (the
 /// interpreter, the JIT: both give the same trace; benchmarks compare
 /// them). `exec` starts cold.
-pub fn run_on<E: Executor, W: Write>(
+pub fn run_on<E: Executor + 'static, W: Write>(
     program: &Program,
     exec: E,
     project: &Project,
@@ -832,65 +847,85 @@ pub fn run_on<E: Executor, W: Write>(
     }
     let cols = columns(&sim, program, judge.refs());
     let sim = Rc::new(RefCell::new(sim));
-    let mut obs = Observer {
+    let obs = Rc::new(RefCell::new(Observer {
         sim: Rc::clone(&sim),
         judge,
-        trace: trace.map(|w| (cols, w)),
+        trace: trace.is_some().then(|| (cols, Vec::new())),
         header_written: false,
-    };
-    let mut exec = PlantExec::new(exec, Rc::clone(&sim));
-    obs.judge
-        .start(automat_runtime::Executor::image(&exec), &sim.borrow());
-    let cfg = RunConfig {
+    }));
+    obs.borrow_mut().judge.start(exec.image(), &sim.borrow());
+    // The PLC session's scan loop, on this thread, to the scenario's end.
+    let config = Config {
         cycle_time_ns: project.cycle_time_ns,
         clock: ClockMode::Virtual,
-        limit: Limit::Duration(scn.duration_ns),
+        monotonic: Box::new(SystemClock::new()),
+        running: true,
+        stop: Arc::new(AtomicBool::new(false)),
+        retain: None,
+        safe: None,
+        realtime: None,
+        wait_after_fault: false,
     };
-    let stop = AtomicBool::new(false);
-    let mut clock = SystemClock::new();
-    let (mut inputs, mut outputs) = (NoIo, NoIo);
-    let report = {
-        let mut env = Env {
-            clock: &mut clock,
-            inputs: &mut inputs,
-            outputs: &mut outputs,
-            observer: &mut obs,
-            stop: &stop,
-        };
-        run_scan(&mut exec, &cfg, &mut env)
+    let parts = Parts {
+        exec: Box::new(exec),
+        sim: Some(Rc::clone(&sim)),
+        observer: Some(Box::new(Watching(Rc::clone(&obs)))),
+        exchange: None,
     };
-    let image = automat_runtime::Executor::image(&exec).to_vec();
+    let end = run_here(
+        Arc::new(program.clone()),
+        config,
+        parts,
+        Limit::Duration(scn.duration_ns),
+    );
+    // The session dropped its handle on the observer when it ended.
+    let mut obs = match Rc::try_unwrap(obs) {
+        Ok(cell) => cell.into_inner(),
+        Err(shared) => Observer {
+            sim: Rc::clone(&sim),
+            judge: std::mem::replace(&mut shared.borrow_mut().judge, Judge::empty()),
+            trace: shared.borrow_mut().trace.take(),
+            header_written: true,
+        },
+    };
+    let image = end.image;
     let mut failures = Vec::new();
     let mut ended = true;
-    match report {
-        Err(e) => failures.push(Failure {
+    match end.end {
+        End::Error => failures.push(Failure {
             what: "the run".into(),
             line: 0,
             at_ns: 0,
-            reason: e,
+            reason: end.error.unwrap_or_default(),
             values: String::new(),
         }),
-        Ok(r) => match r.end {
-            RunEnd::Fault(f) => failures.push(Failure {
-                what: "the program".into(),
-                line: 0,
-                at_ns: f.plc_time_ns,
-                reason: format!("runtime fault: {f}"),
-                values: String::new(),
-            }),
-            RunEnd::Observer(e) => failures.push(Failure {
-                what: "the trace".into(),
-                line: 0,
-                at_ns: obs.judge.last_ns,
-                reason: e,
-                values: String::new(),
-            }),
-            _ => ended = false,
-        },
+        End::Fault => failures.push(Failure {
+            what: "the program".into(),
+            line: 0,
+            at_ns: end.snapshot.plc_time_ns,
+            reason: format!("runtime fault: {}", end.fault.unwrap_or_default()),
+            values: String::new(),
+        }),
+        End::Observer => failures.push(Failure {
+            what: "the trace".into(),
+            line: 0,
+            at_ns: obs.judge.last_ns,
+            reason: end.error.unwrap_or_default(),
+            values: String::new(),
+        }),
+        End::Limit | End::Stopped => ended = false,
     }
     let end_ns = obs.judge.last_ns;
-    if let Some((_, mut w)) = obs.trace.take() {
-        let _ = w.flush();
+    if let (Some((_, rows)), Some(mut w)) = (obs.trace.take(), trace) {
+        if let Err(e) = w.write_all(&rows).and_then(|()| w.flush()) {
+            failures.push(Failure {
+                what: "the trace".into(),
+                line: 0,
+                at_ns: end_ns,
+                reason: e.to_string(),
+                values: String::new(),
+            });
+        }
     }
     let Observer { judge, .. } = obs;
     if ended {

@@ -25,6 +25,27 @@ pub enum Fit {
     Mismatch,
 }
 
+/// CODESYS pointers (`--lib codesys`): a pointer converts to a pointer of
+/// any other type and to and from the unsigned integers and bit strings
+/// of 32 and 64 bits (`ADR` results in a DWORD, as V2.3 code keeps
+/// them). A pointer is a 32-bit image offset: a 64-bit value keeps its
+/// low 32 bits, and every dereference is checked against the image.
+pub fn pointer_cast(types: &TypeTable, from: &Typed, to: TypeId) -> bool {
+    use crate::types::Elem;
+    let is_ref = |id: TypeId| matches!(types.get(id), TypeKind::Ref(_));
+    let addr_int = |id: TypeId| {
+        matches!(
+            types.get(id),
+            TypeKind::Elem(Elem::Udint | Elem::Dword | Elem::Ulint | Elem::Lword)
+        )
+    };
+    match from.ty {
+        Ty::Of(f) => (is_ref(f) && (is_ref(to) || addr_int(to))) || (addr_int(f) && is_ref(to)),
+        Ty::RefOf(_) => is_ref(to) || addr_int(to),
+        _ => false,
+    }
+}
+
 /// Checks that `from` converts implicitly to `to`.
 pub fn fits(types: &TypeTable, from: &Typed, to: TypeId) -> Fit {
     if from.ty == Ty::Error || to == TypeId::ERROR {

@@ -159,6 +159,13 @@ pub fn type_of(model: &Model, interner: &Interner, pou: PouId, expr: &Expr) -> T
     Checker::new(model, interner, Scope::Pou(pou), true).expr(expr, None)
 }
 
+/// The type an expression names when it is a type name and nothing else
+/// (`SIZEOF(INT)`, `SIZEOF(MyStruct)`); `None` for anything else, a
+/// variable of that name included.
+pub fn type_named(model: &Model, interner: &Interner, pou: PouId, expr: &Expr) -> Option<TypeId> {
+    Checker::new(model, interner, Scope::Pou(pou), true).type_named(expr)
+}
+
 fn sort(diags: &mut [Diagnostic]) {
     diags.sort_by_key(|d| (d.span.file, d.span.start, d.span.end));
 }

@@ -44,6 +44,8 @@ impl Section {
             ast::VarKind::External => Section::External,
             ast::VarKind::Global => Section::Global,
             ast::VarKind::Temp => Section::Temp,
+            // Left only where the dialect reported it (E160): checked as VAR.
+            ast::VarKind::Static => Section::Local,
         }
     }
 

@@ -153,17 +153,34 @@ pub fn binary_in(
     codesys: bool,
 ) -> Option<Ty> {
     let strict = binary_strict(types, op, l, r);
-    if strict.is_some()
-        || !codesys
-        || !matches!(
-            op,
-            BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div | BinaryOp::Mod
-        )
-    {
+    if strict.is_some() || !codesys {
         return strict;
     }
     let word = |e: Elem| e.is_bit() && e != Elem::Bool;
-    match (shape(types, l), shape(types, r)) {
+    let int_like = |s: &Shape| match s {
+        Shape::Int(_) => true,
+        Shape::Elem(e) => e.is_int() || word(*e),
+        _ => false,
+    };
+    let (ls, rs) = (shape(types, l), shape(types, r));
+    // Pointers compare as addresses: with each other whatever they point
+    // to, and with integers (`p <> 0`).
+    if is_compare(op) && (matches!(ls, Shape::Ref(_)) || matches!(rs, Shape::Ref(_))) {
+        let addr = |s: &Shape| matches!(s, Shape::Ref(_)) || int_like(s);
+        return (addr(&ls) && addr(&rs)).then_some(Ty::elem(Elem::Bool));
+    }
+    if !matches!(
+        op,
+        BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div | BinaryOp::Mod
+    ) {
+        return strict;
+    }
+    match (ls, rs) {
+        // Pointer arithmetic: an offset in bytes, as CODESYS counts it.
+        (Shape::Ref(_), s) if int_like(&s) && matches!(op, BinaryOp::Add | BinaryOp::Sub) => {
+            Some(l.ty)
+        }
+        (s, Shape::Ref(_)) if int_like(&s) && op == BinaryOp::Add => Some(r.ty),
         (Shape::Elem(a), Shape::Elem(b)) if word(a) && word(b) => lub(a, b).map(Ty::elem),
         (Shape::Elem(a), s @ Shape::Int(_)) if word(a) => {
             adapt(s, a).and_then(|b| lub(a, b)).map(Ty::elem)

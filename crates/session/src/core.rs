@@ -13,8 +13,8 @@
 
 use crate::force::{Boxed, ForceTable, Forcing, Shifted};
 use crate::{
-    Command, Config, Control, CycleStats, Error, Final, Parts, Request, RetainSaves, Shared, Sink,
-    Snapshot, State,
+    Command, Config, Control, CycleStats, End, Error, Final, Parts, Request, RetainSaves, Shared,
+    Sink, Snapshot, State,
 };
 use automat_ir::Program;
 use automat_project::{PlantExec, Sim};
@@ -489,6 +489,23 @@ impl ScanObserver for Observer<'_> {
     }
 }
 
+/// A session that ended before its first scan (`error`).
+fn failed(shared: &Shared, ready: &Sender<Result<(), String>>, e: String) -> Final {
+    let _ = ready.send(Err(e.clone()));
+    Final {
+        image: Vec::new(),
+        snapshot: Arc::clone(&*shared.snapshot.lock().unwrap_or_else(|p| p.into_inner())),
+        error: Some(e),
+        fault: None,
+        fault_report: None,
+        retain: None,
+        stats: Stats::default(),
+        end: End::Error,
+    }
+}
+
+/// The scan thread of a [`crate::Session`]: enters real time, builds the
+/// parts there, runs until the session is shut down.
 pub(crate) fn main(
     program: Arc<Program>,
     config: Config,
@@ -498,37 +515,46 @@ pub(crate) fn main(
     ready: Sender<Result<(), String>>,
 ) -> Final {
     if let Some(rt) = &config.realtime {
-        match automat_runtime::realtime::enter(rt) {
-            Ok(()) => {}
-            Err(e) => {
-                let _ = ready.send(Err(e.clone()));
-                return Final {
-                    image: Vec::new(),
-                    snapshot: Arc::clone(
-                        &*shared.snapshot.lock().unwrap_or_else(|p| p.into_inner()),
-                    ),
-                    error: Some(e),
-                    fault: None,
-                    retain: None,
-                    stats: Stats::default(),
-                };
-            }
+        if let Err(e) = automat_runtime::realtime::enter(rt) {
+            return failed(&shared, &ready, e);
         }
     }
-    let parts = match build() {
-        Ok(p) => p,
-        Err(e) => {
-            let _ = ready.send(Err(e.clone()));
-            return Final {
-                image: Vec::new(),
-                snapshot: Arc::clone(&*shared.snapshot.lock().unwrap_or_else(|p| p.into_inner())),
-                error: Some(e),
-                fault: None,
-                retain: None,
-                stats: Stats::default(),
-            };
+    match build() {
+        Ok(parts) => run(program, config, parts, Limit::Unbounded, rx, shared, ready),
+        Err(e) => failed(&shared, &ready, e),
+    }
+}
+
+/// A batch run on the calling thread ([`crate::run_here`]).
+pub(crate) fn here(
+    program: Arc<Program>,
+    config: Config,
+    parts: Parts,
+    limit: Limit,
+    rx: Receiver<Request>,
+    shared: Arc<Shared>,
+) -> Final {
+    let (ready, _) = std::sync::mpsc::channel();
+    if let Some(rt) = &config.realtime {
+        if let Err(e) = automat_runtime::realtime::enter(rt) {
+            return failed(&shared, &ready, e);
         }
-    };
+    }
+    run(program, config, parts, limit, rx, shared, ready)
+}
+
+/// The scan loop of a session, on the thread that calls it, until `limit`,
+/// a stop or the end of the session.
+#[allow(clippy::too_many_arguments)]
+fn run(
+    program: Arc<Program>,
+    config: Config,
+    parts: Parts,
+    limit: Limit,
+    rx: Receiver<Request>,
+    shared: Arc<Shared>,
+    ready: Sender<Result<(), String>>,
+) -> Final {
     let Parts {
         exec,
         sim,
@@ -624,10 +650,13 @@ pub(crate) fn main(
     let cfg = RunConfig {
         cycle_time_ns: config.cycle_time_ns,
         clock: config.clock,
-        limit: Limit::Unbounded,
+        limit,
     };
     let stop = Arc::clone(&config.stop);
     let mut error = None;
+    // Stopped unless a limit, a fault or an error says otherwise.
+    let mut end = End::Stopped;
+    let mut last_fault: Option<automat_runtime::scan::FaultReport> = None;
     loop {
         if core.restart.take().is_some() {
             if let Some(s) = &sim {
@@ -660,10 +689,16 @@ pub(crate) fn main(
         match report {
             Err(e) => {
                 error = Some(e);
+                end = End::Error;
                 break;
             }
             Ok(r) => match r.end {
                 RunEnd::Fault(f) => {
+                    end = End::Fault;
+                    last_fault = Some(automat_runtime::scan::FaultReport {
+                        plc_time_ns: f.plc_time_ns.saturating_add(core.offset.get()),
+                        ..(*f).clone()
+                    });
                     if let Some(s) = &sim {
                         s.borrow_mut().safe_state(exec.image());
                     }
@@ -715,23 +750,34 @@ pub(crate) fn main(
                 }
                 RunEnd::Observer(e) => {
                     error = Some(e);
+                    end = End::Observer;
                     break;
                 }
                 RunEnd::Stopped => {
+                    end = End::Stopped;
                     // The outputs are in the safe state: the plant is told.
                     if let Some(s) = &sim {
                         s.borrow_mut().safe_state(exec.image());
                     }
                     break;
                 }
-                RunEnd::Limit | RunEnd::TimeExhausted => break,
+                RunEnd::Limit | RunEnd::TimeExhausted => {
+                    end = End::Limit;
+                    break;
+                }
             },
         }
     }
-    finish(core, &exec, error, has_retain)
+    finish(core, &exec, error, has_retain, (end, last_fault))
 }
 
-fn finish(mut core: Core, exec: &impl Executor, error: Option<String>, has_retain: bool) -> Final {
+fn finish(
+    mut core: Core,
+    exec: &impl Executor,
+    error: Option<String>,
+    has_retain: bool,
+    (end, last_fault): (End, Option<automat_runtime::scan::FaultReport>),
+) -> Final {
     // The last end-of-scan snapshot, after the writer thread is done.
     let last = core.keeper.finish();
     let retain = has_retain.then(|| RetainSaves {
@@ -769,7 +815,11 @@ fn finish(mut core: Core, exec: &impl Executor, error: Option<String>, has_retai
         fault: matches!(core.state, State::Fault { .. })
             .then(|| core.fault.take())
             .flatten(),
+        fault_report: matches!(core.state, State::Fault { .. })
+            .then_some(last_fault)
+            .flatten(),
         retain,
         stats: std::mem::take(&mut core.totals),
+        end,
     }
 }

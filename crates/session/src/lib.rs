@@ -42,6 +42,7 @@ pub use symbols::Node;
 
 use automat_ir::Program;
 use automat_project::Sim;
+pub use automat_runtime::Limit;
 use automat_runtime::{resolve, resolve_access, value as show, ClockMode, Executor, Monotonic};
 use automat_runtime::{Place, SafeState, ScanObserver};
 use std::cell::RefCell;
@@ -232,10 +233,74 @@ pub struct Final {
     /// The fault the session ended in, as the runtime reports it
     /// (`file:line:col: fault in POU: message (task …, PLC time …)`).
     pub fault: Option<String>,
+    /// The same fault as the runtime reported it (its kind and site), for
+    /// harnesses that compare them.
+    pub fault_report: Option<automat_runtime::scan::FaultReport>,
     /// The RETAIN saves (`None` without a RETAIN file).
     pub retain: Option<RetainSaves>,
     /// Scan statistics of the whole session (every run between stops).
     pub stats: automat_runtime::stats::Stats,
+    /// What ended the scan loop.
+    pub end: End,
+}
+
+/// What ended a session's scan loop.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum End {
+    /// The run's limit ([`run_here`]: cycles or PLC time).
+    Limit,
+    /// A stop: the outside stop flag, a shutdown, every handle gone.
+    Stopped,
+    /// A runtime fault ([`Final::fault`]).
+    Fault,
+    /// The caller's observer refused a scan ([`Final::error`]: a trace
+    /// that cannot be written).
+    Observer,
+    /// The run could not start or go on ([`Final::error`]).
+    Error,
+}
+
+/// An observer the caller keeps a handle on, to ask after a
+/// [`run_here`] (a trace to flush, a scenario's verdicts).
+pub struct Watching<T>(pub Rc<RefCell<T>>);
+
+impl<T: ScanObserver> ScanObserver for Watching<T> {
+    fn after_scan(&mut self, plc_time_ns: i64, image: &[u8]) -> Result<(), String> {
+        self.0.borrow_mut().after_scan(plc_time_ns, image)
+    }
+    fn stats(&mut self, stats: &automat_runtime::stats::Stats) {
+        self.0.borrow_mut().stats(stats);
+    }
+    fn between_scans(&mut self, image: &mut [u8]) -> bool {
+        self.0.borrow_mut().between_scans(image)
+    }
+}
+
+/// Runs a session on the calling thread until `limit` (`--cycles`,
+/// `--duration`, a scenario's duration), a fault or the stop flag: the
+/// batch runs of `automat run` and `automat test` go through the same
+/// scan loop, forces and RETAIN keeping as a served PLC. `parts` are
+/// built by the caller (they need not be `Send`); `config.running` is
+/// taken as true and nobody sends commands.
+pub fn run_here(program: Arc<Program>, mut config: Config, parts: Parts, limit: Limit) -> Final {
+    config.running = true;
+    config.wait_after_fault = false;
+    let shared = Arc::new(Shared {
+        snapshot: Mutex::new(Arc::new(Snapshot {
+            plc_time_ns: 0,
+            scans: 0,
+            state: State::Running,
+            stats: CycleStats::default(),
+            image: program.initial_image.clone(),
+            forces: Arc::new(Vec::new()),
+        })),
+    });
+    // The sender lives as long as the run, so the loop never takes the
+    // closed channel for "every handle is gone".
+    let (tx, rx) = channel::<Request>();
+    let end = core::here(program, config, parts, limit, rx, shared);
+    drop(tx);
+    end
 }
 
 /// Values of watched paths after a scan, as `--print` shows them.

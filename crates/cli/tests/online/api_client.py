@@ -8,6 +8,7 @@ against a real-time run for the robustness checks.
     api_client.py robust URL TOKEN      # hostile clients while the PLC runs
     api_client.py tls URL TOKEN CERT    # HTTPS and WSS with the server's certificate
     api_client.py plant URL TOKEN       # the plant: read it, press Pornire (virtual clock)
+    api_client.py fst URL TOKEN         # FST online status (festo-distribution-stl)
 
 Users of the exact run (made by the harness with `automat passwd`):
 viewer `ada` / `viewer-pass`, operator `otto` / `operator-pass`.
@@ -68,9 +69,33 @@ def expect(name, r, status, error_part=None):
     check(name, ok, f"{r.status_code} {body}")
 
 
+def charts_contract(eng, anon):
+    """GET /api/v1/charts: the crane's ISaGRAF chart as the compiler reads it."""
+    expect("charts without a token: 401", anon.get("/api/v1/charts"), 401)
+    r = eng.get("/api/v1/charts")
+    check("charts: 200", r.status_code == 200, f"{r.status_code} {r.text}")
+    charts = r.json()["charts"] if r.status_code == 200 else []
+    check("charts: one chart, POU Crane, run by instance Ctrl",
+          [(c["pou"].lower(), c["instances"]) for c in charts] == [("crane", ["Ctrl"])], charts)
+    if not charts:
+        return
+    chart = charts[0]["chart"]
+    steps = [(s["name"].upper(), s["initial"]) for s in chart["steps"]]
+    check("charts: the 8 steps GS1..GS8, GS1 initial",
+          steps == [(f"GS{i}", i == 1) for i in range(1, 9)], steps)
+    cycle = [(t["from"], t["to"]) for t in chart["transitions"]]
+    want = [([f"GS{i}"], [f"GS{i % 8 + 1}"]) for i in range(1, 9)]
+    check("charts: 8 transitions closing the cycle GS1 -> GS2 ... GS8 -> GS1",
+          [([f.upper() for f in a], [t.upper() for t in b]) for a, b in cycle] == want, cycle)
+    dwell = [t["condition"] for t in chart["transitions"] if [f.upper() for f in t["from"]] == ["GS5"]]
+    check("charts: the dwell transition's condition is the source text",
+          dwell == ["GS5.t >= DWELL_TIME"], dwell)
+
+
 def exact(base, token):
     eng = Api(base, token)
     anon = Api(base, None)
+    charts_contract(eng, anon)
 
     # Authentication.
     expect("no token: 401", anon.get("/api/v1/status"), 401, "credentials")
@@ -354,12 +379,44 @@ def plant(base, token):
            "press, release, set or unstick")
 
 
+def fst(base, token):
+    """FST online status (issue: Festo STL, point 7) on the MPS distribution
+    station in STL: each program's RUN state and active step, and the
+    operands by their FST names and their symbols, as FST's online display."""
+    eng = Api(base, token)
+    eng.step(100)
+    v = eng.read("P0.run", "P1.run", "P1.step", "I0.1", "CylBack", "O0.3", "ArmToMag", "TP1")
+    check("fst: P0 and P1 run, P1 waits in step `wait`, operands by name and symbol",
+          v == {"P0.run": "TRUE", "P1.run": "TRUE", "P1.step": "__FST_P1_STEPS#wait",
+                "I0.1": "TRUE", "CylBack": "TRUE", "O0.3": "FALSE", "ArmToMag": "FALSE",
+                "TP1": "20"}, v)
+    tree = eng.get("/api/v1/symbols", prefix="P1").json()["symbols"]
+    kids = [(c["name"].lower(), c["writable"]) for c in tree[0]["children"]] if tree else []
+    check("fst: the symbol tree lists P1 with its run and step, read-only",
+          kids == [("run", False), ("step", False)], tree)
+    # START pressed through a force on its FST operand, released 200 ms later.
+    r = eng.post("/api/v1/force", {"path": "I1.0", "value": "TRUE"})
+    expect("fst: force I1.0 (START)", r, 200)
+    eng.step(20)
+    r = eng.post("/api/v1/unforce", {"path": "I1.0"})
+    expect("fst: unforce I1.0", r, 200)
+    eng.step(5)
+    v = eng.read("P1.step", "EjectOut", "O0.0", "START")
+    check("fst: after START, P1 is in step `push` and extends the cylinder",
+          v == {"P1.step": "__FST_P1_STEPS#push", "EjectOut": "TRUE", "O0.0": "TRUE",
+                "START": "FALSE"}, v)
+    r = eng.post("/api/v1/write", {"path": "P1.run", "value": "FALSE"})
+    expect("fst: a program's run state is not written from outside: 409", r, 409)
+
+
 def main():
     mode, base, token = sys.argv[1:4]
     if mode == "exact":
         exact(base, token)
     elif mode == "plant":
         plant(base, token)
+    elif mode == "fst":
+        fst(base, token)
     elif mode == "tls":
         tls(base, token, sys.argv[4])
     else:

@@ -325,32 +325,48 @@ impl Gen<'_, '_> {
     }
 
     fn index(&mut self, b: Lv, indices: &[Expr], e: &Expr) -> Res<Lv> {
-        let TypeKind::Array { elem, dims } = self.kind(b.ty) else {
-            return Err(self.error(e.span, "indexing a value that is not an array".into()));
+        // CODESYS `s[i]`: the i-th character code of a STRING (BYTE) or
+        // WSTRING (WORD), from 0, as an array of its capacity after the
+        // 2-byte length.
+        let (elem, bounds, stride, header) = match self.kind(b.ty) {
+            TypeKind::Array { elem, dims } => {
+                let elem = *elem;
+                let bounds = self.cx.layout.dims(dims);
+                let desc = match b.addr.base {
+                    automat_ir::code::Base::Reg(r) if b.addr.offset == 0 => {
+                        self.star.get(&r).copied()
+                    }
+                    _ => None,
+                };
+                if let (Some(d), true) = (desc, bounds.len() == indices.len()) {
+                    return self.index_star(b, d, elem, indices);
+                }
+                (elem, bounds, self.cx.layout.stride(elem) as i64, 0)
+            }
+            TypeKind::String { wide, len } => {
+                let (el, unit) = if *wide {
+                    (Elem::Word, 2)
+                } else {
+                    (Elem::Byte, 1)
+                };
+                let last = i64::from(*len) - 1;
+                (TypeId::elem(el), vec![(0, last)], unit, 2)
+            }
+            _ => return Err(self.error(e.span, "indexing a value that is not an array".into())),
         };
-        let elem = *elem;
-        let bounds = self.cx.layout.dims(dims);
-        let desc = match b.addr.base {
-            automat_ir::code::Base::Reg(r) if b.addr.offset == 0 => self.star.get(&r).copied(),
-            _ => None,
-        };
-        if let (Some(d), true) = (desc, bounds.len() == indices.len()) {
-            return self.index_star(b, d, elem, indices);
-        }
         if bounds.len() != indices.len() || bounds.iter().any(|(lo, hi)| lo > hi) {
             return Err(self.error(
                 e.span,
                 "arrays of unknown size ([*]) are not supported".into(),
             ));
         }
-        let stride = self.cx.layout.stride(elem) as i64;
         // Multiplier of each dimension: row-major.
         let mut mults = vec![stride; bounds.len()];
         for k in (0..bounds.len().saturating_sub(1)).rev() {
             let (lo, hi) = bounds[k + 1];
             mults[k] = mults[k + 1].saturating_mul(hi - lo + 1);
         }
-        let mut const_off: i64 = 0;
+        let mut const_off: i64 = header;
         let mut acc: Option<u32> = None;
         for ((ix, (lo, hi)), m) in indices.iter().zip(bounds).zip(mults) {
             let known = self.typed(ix).value.as_ref().and_then(Value::as_int);

@@ -8,7 +8,7 @@ use crate::symbols::elementary;
 use automat_base::Span;
 use automat_ir::code::{Builtin, Cmp, FloatOp, Inst, IntOp, MemTy, Reg, RegClass, StrFn, TimeFn};
 use automat_sema::ops::Ty;
-use automat_sema::types::{Elem, TypeId};
+use automat_sema::types::{Elem, TypeId, TypeKind};
 use automat_sema::Typed;
 use automat_syntax::ast::{BinaryOp, Expr, UnaryOp};
 
@@ -204,6 +204,20 @@ impl Gen<'_, '_> {
 
     /// The type two operands of a comparison meet in.
     fn common(&self, a: &Typed, b: &Typed) -> Option<TypeId> {
+        let is_ref = |t: &Typed| match t.ty {
+            Ty::RefOf(_) => true,
+            Ty::Of(x) => matches!(self.kind(x), TypeKind::Ref(_)),
+            _ => false,
+        };
+        // References and pointers compare as the image offsets they hold
+        // (REF(x) = r; CODESYS also p <> 0, pointers of other types).
+        if is_ref(a) || is_ref(b) {
+            return match (a.ty, b.ty) {
+                (Ty::Of(x), Ty::Of(y)) if x == y => Some(x),
+                (Ty::Of(x), Ty::Error) | (Ty::Error, Ty::Of(x)) => Some(x),
+                _ => Some(TypeId::elem(Elem::Udint)),
+            };
+        }
         match (a.ty, b.ty) {
             (Ty::Of(x), Ty::Of(y)) if x == y => Some(x),
             (Ty::Of(x), Ty::Of(y)) => match (self.elem(x), self.elem(y)) {
@@ -255,7 +269,18 @@ impl Gen<'_, '_> {
                 ty: TypeId::BOOL,
             });
         }
+        if let Ty::RefOf(t) = typed.ty {
+            // `ADR(x) + n`: typed as the wanted pointer, else as one to x's type.
+            let ty = want
+                .filter(|&w| matches!(self.kind(w), TypeKind::Ref(_)))
+                .or_else(|| self.cx.model.types.find_ref(t))
+                .unwrap_or(TypeId::elem(Elem::Udint));
+            return self.pointer_offset(op, l, r, ty, e);
+        }
         let ty = self.concrete(typed.ty, want, None).ok_or(Failed)?;
+        if matches!(self.kind(ty), TypeKind::Ref(_)) {
+            return self.pointer_offset(op, l, r, ty, e);
+        }
         let el = self
             .elem(ty)
             .ok_or_else(|| self.error(e.span, "operator not supported on this type".into()))?;
@@ -268,6 +293,30 @@ impl Gen<'_, '_> {
         let a = self.expr(l, Some(ty))?;
         let b = self.expr(r, Some(ty))?;
         let v = self.arith(op, a, b, el, e.span)?;
+        Ok(Val { v, ty })
+    }
+
+    /// CODESYS pointer arithmetic, `p + n`, `n + p`, `p - n`: the image
+    /// offset moved by `n` bytes, wrapping at 32 bits (a pointer that
+    /// leaves the image faults when it is dereferenced).
+    fn pointer_offset(
+        &mut self,
+        op: BinaryOp,
+        l: &Expr,
+        r: &Expr,
+        ty: TypeId,
+        e: &Expr,
+    ) -> Res<Val> {
+        let l_is_ptr =
+            matches!(self.typed(l).ty, Ty::Of(t) if matches!(self.kind(t), TypeKind::Ref(_)));
+        let (p, n) = if l_is_ptr { (l, r) } else { (r, l) };
+        let pv = self.expr(p, None)?;
+        let nv = self.expr(n, None)?;
+        let as_udint = |v: Val| Val {
+            v: v.v,
+            ty: TypeId::elem(Elem::Udint),
+        };
+        let v = self.arith(op, as_udint(pv), as_udint(nv), Elem::Udint, e.span)?;
         Ok(Val { v, ty })
     }
 

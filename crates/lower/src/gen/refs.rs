@@ -26,11 +26,16 @@ impl Gen<'_, '_> {
         };
         let V::I(r) = v.v else { return Err(Failed) };
         let site = self.site(e.span);
+        // The whole target must lie in the image (0 is NULL): a CODESYS
+        // pointer moved by arithmetic can point anywhere. The image's size
+        // is known only after code generation, which patches the bound
+        // (`-size` stands for `image size - size`, see `patch_ref_checks`).
+        let (size, _) = self.cx.layout.size(target);
         self.emit(Inst::Check {
             kind: CheckKind::Ref,
             val: r,
             lo: 1,
-            hi: i64::from(u32::MAX),
+            hi: -i64::from(size.max(1)),
             site,
         });
         Ok(Lv {
@@ -103,7 +108,8 @@ impl Gen<'_, '_> {
 
     /// `SIZEOF(x)`: the bytes `x` occupies (a VAR_IN_OUT: its target's).
     pub fn size_of(&mut self, x: &Expr) -> Res<Val> {
-        let ty = match self.typed(x).ty {
+        let named = automat_sema::type_named(self.cx.model, self.cx.interner, self.pou, x);
+        let ty = match named.map_or(self.typed(x).ty, Ty::Of) {
             Ty::Of(t) => t,
             t => self.concrete(t, None, None).ok_or(Failed)?,
         };

@@ -6,13 +6,15 @@ use automat_base::{render, Interner, SourceMap};
 use automat_engine::Engine;
 use automat_ir::Program;
 use automat_lower::{lower, LowerOptions};
-use automat_runtime::io::NoIo;
-use automat_runtime::scan::Env;
 use automat_runtime::Executor;
 use automat_runtime::{
-    resolve, run, value, ClockMode, Limit, Place, RunConfig, RunEnd, ScanObserver, SystemClock,
+    resolve, value, ClockMode, Limit, Place, SafeState, ScanObserver, SystemClock,
 };
+use automat_session::{run_here, Config, End, Parts, Watching};
+use std::cell::RefCell;
+use std::rc::Rc;
 use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
 
 /// Parses, checks and lowers one file; the error is the rendered diagnostics.
 fn compile(name: &str, text: &str, spec: &Spec) -> Result<Program, String> {
@@ -39,19 +41,19 @@ fn compile(name: &str, text: &str, spec: &Spec) -> Result<Program, String> {
 }
 
 /// Prints the `expect-at` places after the scans they name.
-struct Snapshots<'a> {
+struct Snapshots {
     scans: u64,
-    wanted: Vec<(&'a Expect, Place)>,
+    wanted: Vec<(Expect, Place)>,
     /// (expectation, printed value) in scan order.
-    seen: Vec<(&'a Expect, String)>,
+    seen: Vec<(Expect, String)>,
 }
 
-impl ScanObserver for Snapshots<'_> {
+impl ScanObserver for Snapshots {
     fn after_scan(&mut self, _plc_time_ns: i64, image: &[u8]) -> Result<(), String> {
         self.scans += 1;
         for (e, p) in &self.wanted {
             if e.at == Some(self.scans) {
-                self.seen.push((e, value::format(image, p)));
+                self.seen.push((e.clone(), value::format(image, p)));
             }
         }
         Ok(())
@@ -86,7 +88,7 @@ pub fn check_on(
             if let Some(b) = spec.budget {
                 engine.set_budget(b);
             }
-            observe(&mut engine, spec)
+            observe(engine, spec)
         }
         #[cfg(feature = "jit")]
         Backend::Jit => {
@@ -95,14 +97,18 @@ pub fn check_on(
             if let Some(b) = spec.budget {
                 jit.set_budget(b);
             }
-            observe(&mut jit, spec)
+            observe(jit, spec)
         }
         #[cfg(not(feature = "jit"))]
         Backend::Jit => Err("automat-scenario was built without its `jit` feature".to_string()),
     }
 }
 
-fn observe<E: Executor>(engine: &mut E, spec: &Spec) -> Result<Vec<String>, String> {
+/// Runs the case through the PLC session (the scan loop every run of
+/// automat uses) on the virtual clock. A fault leaves the image as the
+/// fault left it (no outputs are forced to a safe state): the case's
+/// final expectations see what the program did.
+fn observe<E: Executor + 'static>(engine: E, spec: &Spec) -> Result<Vec<String>, String> {
     let program = engine.program().clone();
     let mut places = Vec::new();
     for e in &spec.expects {
@@ -110,34 +116,41 @@ fn observe<E: Executor>(engine: &mut E, spec: &Spec) -> Result<Vec<String>, Stri
             .map_err(|err| format!("line {}: cannot resolve `{}`: {err}", e.line, e.path))?;
         places.push((e, p));
     }
-    let mut snaps = Snapshots {
+    let wanted: Vec<(Expect, Place)> = places
+        .iter()
+        .filter(|(e, _)| e.at.is_some())
+        .map(|(e, p)| ((*e).clone(), p.clone()))
+        .collect();
+    let snaps = Rc::new(RefCell::new(Snapshots {
         scans: 0,
-        wanted: places
-            .iter()
-            .filter(|(e, _)| e.at.is_some())
-            .cloned()
-            .collect(),
+        wanted,
         seen: Vec::new(),
-    };
-    let cfg = RunConfig {
+    }));
+    let config = Config {
         cycle_time_ns: spec.cycle_time_ns,
         clock: ClockMode::Virtual,
-        limit: Limit::Cycles(spec.cycles),
+        monotonic: Box::new(SystemClock::new()),
+        running: true,
+        stop: Arc::new(AtomicBool::new(false)),
+        retain: None,
+        safe: Some(SafeState::default()),
+        realtime: None,
+        wait_after_fault: false,
     };
-    let stop = AtomicBool::new(false);
-    let mut sys = SystemClock::new();
-    let (mut inputs, mut outputs) = (NoIo, NoIo);
-    let mut env = Env {
-        clock: &mut sys,
-        inputs: &mut inputs,
-        outputs: &mut outputs,
-        observer: &mut snaps,
-        stop: &stop,
+    let parts = Parts {
+        exec: Box::new(engine),
+        sim: None,
+        observer: Some(Box::new(Watching(Rc::clone(&snaps)))),
+        exchange: None,
     };
-    let report = run(engine, &cfg, &mut env)?;
+    let end = run_here(Arc::new(program), config, parts, Limit::Cycles(spec.cycles));
+    if end.end == End::Error {
+        return Err(end.error.unwrap_or_default());
+    }
+    let snaps = snaps.borrow();
     let mut fails = Vec::new();
-    match (&report.end, &spec.fault) {
-        (RunEnd::Fault(f), Some(want)) => {
+    match (end.end, &end.fault_report, &spec.fault) {
+        (End::Fault, Some(f), Some(want)) => {
             let line = f
                 .fault
                 .site
@@ -163,13 +176,16 @@ fn observe<E: Executor>(engine: &mut E, spec: &Spec) -> Result<Vec<String>, Stri
                 ));
             }
         }
-        (RunEnd::Fault(f), None) => fails.push(format!("unexpected fault: {f}")),
-        (end, Some(want)) => fails.push(format!(
+        (End::Fault, f, None) => fails.push(format!(
+            "unexpected fault: {}",
+            f.as_ref().map_or(String::new(), ToString::to_string)
+        )),
+        (end, _, Some(want)) => fails.push(format!(
             "expected fault {:?} at line {}, run ended with {end:?}",
             want.kind, want.line
         )),
-        (RunEnd::Limit, None) => {}
-        (end, None) => fails.push(format!("run ended with {end:?}")),
+        (End::Limit, _, None) => {}
+        (end, _, None) => fails.push(format!("run ended with {end:?}")),
     }
     for (e, got) in &snaps.seen {
         if *got != e.value {
@@ -179,17 +195,15 @@ fn observe<E: Executor>(engine: &mut E, spec: &Spec) -> Result<Vec<String>, Stri
     for (e, p) in &places {
         match e.at {
             None => {
-                let got = value::format(engine.image(), p);
+                let got = value::format(&end.image, p);
                 if got != e.value {
                     fails.push(mismatch(e, &got));
                 }
             }
-            Some(k) if !snaps.seen.iter().any(|(s, _)| std::ptr::eq(*s, *e)) => {
-                fails.push(format!(
-                    "line {}: {}: scan {k} never ran ({} scans)",
-                    e.line, e.path, snaps.scans
-                ))
-            }
+            Some(k) if !snaps.seen.iter().any(|(s, _)| s.line == e.line) => fails.push(format!(
+                "line {}: {}: scan {k} never ran ({} scans)",
+                e.line, e.path, snaps.scans
+            )),
             Some(_) => {}
         }
     }

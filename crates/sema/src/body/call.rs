@@ -471,6 +471,9 @@ impl<'m> Checker<'m> {
     ) {
         match fits(&self.model.types, t, to) {
             Fit::Ok => {}
+            Fit::Mismatch
+                if self.model.codesys && crate::convert::pointer_cast(&self.model.types, t, to) => {
+            }
             Fit::NarrowedConstant => {
                 let v = t.value.as_ref().map_or_else(String::new, |v| v.show());
                 self.warn(Code::W003, span, |c| {

@@ -164,9 +164,18 @@ impl<'m> Checker<'m> {
                         )
                     });
                     if ops::binary_in(&self.model.types, *op, &l, &r, true).is_some() {
-                        self.note_codesys(
-                            "CODESYS allows arithmetic on BYTE, WORD, DWORD and LWORD",
-                        );
+                        let pointer = |t: &Typed| match t.ty {
+                            Ty::RefOf(_) => true,
+                            Ty::Of(id) => {
+                                matches!(self.model.types.get(id), crate::types::TypeKind::Ref(_))
+                            }
+                            _ => false,
+                        };
+                        self.note_codesys(if pointer(&l) || pointer(&r) {
+                            "CODESYS allows arithmetic on pointers (in bytes) and compares them as addresses"
+                        } else {
+                            "CODESYS allows arithmetic on BYTE, WORD, DWORD and LWORD"
+                        });
                     }
                     return Typed::ERROR;
                 };
@@ -594,6 +603,16 @@ impl<'m> Checker<'m> {
             },
             _ => None,
         };
+        let string = match b.ty {
+            Ty::Of(id) => match self.model.types.get(id) {
+                TypeKind::String { wide, len } => Some((*wide, *len)),
+                _ => None,
+            },
+            _ => None,
+        };
+        if let (Some((wide, len)), true, [ix]) = (string, self.model.codesys, indices) {
+            return self.string_index(base, ix, wide, len);
+        }
         let Some((elem, dims)) = array else {
             for i in indices {
                 self.expr(i, None);
@@ -601,7 +620,13 @@ impl<'m> Checker<'m> {
             if b.ty == Ty::Error {
                 return Typed::ERROR;
             }
-            return self.not_indexable(base, b.ty);
+            let t = self.not_indexable(base, b.ty);
+            if string.is_some() && indices.len() == 1 {
+                self.note_codesys(
+                    "CODESYS reads and writes the character codes of a string as `s[i]`",
+                );
+            }
+            return t;
         };
         if dims.len() != indices.len() {
             for i in indices {
@@ -652,6 +677,37 @@ impl<'m> Checker<'m> {
             }
         }
         Typed::of(elem)
+    }
+
+    /// CODESYS `s[i]`: the character code at position `i` (from 0) of a
+    /// STRING (BYTE) or WSTRING (WORD) of capacity `len`.
+    fn string_index(&mut self, base: &Expr, ix: &Expr, wide: bool, len: u32) -> Typed {
+        let t = self.expr(ix, None);
+        let is_int = match t.ty {
+            Ty::Error => true,
+            Ty::AnyInt => true,
+            Ty::Of(id) => self.model.types.elem(id).is_some_and(|e| e.is_int()),
+            _ => false,
+        };
+        if !is_int {
+            self.err(Code::E030, ix.span, |c| {
+                format!(
+                    "a string index must be an integer, found {}",
+                    c.tyname(t.ty)
+                )
+            });
+        } else if let Some(v) = t.value.as_ref().and_then(Value::as_int) {
+            if v < 0 || v >= i128::from(len) {
+                self.err(Code::E035, ix.span, |c| {
+                    format!(
+                        "index {v} is out of range 0..{} of the string `{}`",
+                        i128::from(len) - 1,
+                        expr_text(c.interner, base)
+                    )
+                });
+            }
+        }
+        Typed::elem(if wide { Elem::Word } else { Elem::Byte })
     }
 
     fn not_indexable(&mut self, base: &Expr, t: Ty) -> Typed {

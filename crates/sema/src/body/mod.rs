@@ -444,6 +444,25 @@ impl<'m> Checker<'m> {
             .clone()
     }
 
+    /// The type an expression names when it is only a type name (see
+    /// [`crate::type_named`]).
+    pub(crate) fn type_named(&mut self, e: &ast::Expr) -> Option<TypeId> {
+        let ast::ExprKind::Name(id) = &e.kind else {
+            return None;
+        };
+        match self.lookup(id.sym) {
+            Named::Type => self.type_by_name(*id),
+            // The elementary type names are keywords, not declared names.
+            Named::Unknown => self
+                .model
+                .syms
+                .elems
+                .get(&id.sym)
+                .map(|&el| TypeId::elem(el)),
+            _ => None,
+        }
+    }
+
     /// A type named in an expression (literal prefixes).
     pub(crate) fn type_by_name(&self, id: ast::Ident) -> Option<TypeId> {
         if let Some(&e) = self.model.syms.elems.get(&id.sym) {

@@ -92,6 +92,9 @@ impl<'m> Checker<'m> {
                         });
                     }
                 }
+                // `SIZEOF(INT)`: a type name stands for a value of its type.
+                PTy::Free(_)
+                    if sig.op == crate::stdlib::StdOp::Sizeof && self.type_named(v).is_some() => {}
                 PTy::Free(k) if p.dir == PDir::In => {
                     let at = self.expr(v, None);
                     if matches!(sig.ret, RTy::RefToArg) {

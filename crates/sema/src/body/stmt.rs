@@ -217,6 +217,9 @@ impl<'m> Checker<'m> {
                     )
                 });
             }
+            Fit::Mismatch
+                if self.model.codesys && crate::convert::pointer_cast(&self.model.types, v, to) => {
+            }
             Fit::Mismatch if self.model.codesys && narrowing(&self.model.types, v, to) => {
                 self.warn(Code::W161, span, |c| {
                     let from = crate::names::value_desc(&c.model.types, c.interner, v);
@@ -233,7 +236,7 @@ impl<'m> Checker<'m> {
                     let from = crate::names::value_desc(&c.model.types, c.interner, v);
                     // The IL current result carried into a label (the hidden
                     // BOOL of the IL lowering) is not a name the user wrote.
-                    if expr_text(c.interner, target).eq_ignore_ascii_case("__CRL") {
+                    if expr_text(c.interner, target).eq_ignore_ascii_case(automat_syntax::LABEL_CR_VAR) {
                         return format!(
                             "the current result ({from}) continues across a label, which only a BOOL current result can: store it with ST and load it again after the label"
                         );
@@ -247,6 +250,10 @@ impl<'m> Checker<'m> {
                 });
                 if narrow {
                     self.note_codesys("CODESYS converts such a value implicitly (warning W161)");
+                } else if crate::convert::pointer_cast(&self.model.types, v, to) {
+                    self.note_codesys(
+                        "CODESYS converts pointers to each other and to and from DWORD/UDINT/LWORD/ULINT",
+                    );
                 }
             }
         }

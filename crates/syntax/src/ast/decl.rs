@@ -53,6 +53,9 @@ pub enum VarKind {
     External,
     Global,
     Temp,
+    /// `VAR_STAT` (CODESYS): one copy for every call and every instance;
+    /// the `codesys` dialect turns it into hidden globals before checking.
+    Static,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]

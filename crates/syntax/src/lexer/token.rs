@@ -180,6 +180,7 @@ keywords! {
     VarExternal => b"VAR_EXTERNAL",
     VarGlobal => b"VAR_GLOBAL",
     VarTemp => b"VAR_TEMP",
+    VarStat => b"VAR_STAT",
     VarAccess => b"VAR_ACCESS",
     VarConfig => b"VAR_CONFIG",
     EndVar => b"END_VAR",
@@ -316,6 +317,7 @@ impl Kw {
                 | Kw::VarExternal
                 | Kw::VarGlobal
                 | Kw::VarTemp
+                | Kw::VarStat
                 | Kw::VarAccess
                 | Kw::VarConfig
         )

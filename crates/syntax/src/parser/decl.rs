@@ -70,6 +70,19 @@ impl Parser<'_> {
             Tok::Kw(Kw::VarExternal) => VarKind::External,
             Tok::Kw(Kw::VarGlobal) => VarKind::Global,
             Tok::Kw(Kw::VarTemp) => VarKind::Temp,
+            Tok::Kw(Kw::VarStat) => {
+                if !self.opts.codesys {
+                    self.diags.push(
+                        Diagnostic::error(
+                            Code::E160,
+                            self.tok_span(opener),
+                            "`VAR_STAT` is a CODESYS variable section",
+                        )
+                        .with_note("check with `--lib codesys` (or `libraries = [\"codesys\"]` in automat.toml) to read CODESYS code"),
+                    );
+                }
+                VarKind::Static
+            }
             _ => VarKind::Local,
         };
         let mut constant = false;
