@@ -235,8 +235,8 @@ codes! {
         "PL7 dialect: step objects `%Xi` are global, so a step number names one step of one chart.";
 
     // ---- PLCopen TC6 XML (automat-plcopen) ----
-    E160 => "VAR_STAT not supported here",
-        "`VAR_STAT` (CODESYS: variables of a function, function block or program that keep their values between calls, one copy shared by every call and every instance) is read with the CODESYS dialect only (`--lib codesys`), in the body of a FUNCTION, FUNCTION_BLOCK or PROGRAM; not yet in a METHOD.";
+    E160 => "VAR_STAT or VAR_INST not supported here",
+        "CODESYS variable sections, read with the CODESYS dialect only (`--lib codesys`): `VAR_STAT` (variables that keep their values between calls, one copy shared by every call and every instance) in a FUNCTION, FUNCTION_BLOCK, PROGRAM or METHOD, not yet among the variables of a function block that has methods; `VAR_INST` (variables of a METHOD kept in its function block's instance) only in a METHOD.";
     E170 => "malformed PLCopen XML",
         "A `.xml` source is not well-formed XML, or its root element is not a PLCopen TC6 `project` (schema 2.01 or 2.0). The message gives the XML parser's reason; the location is where it stopped.";
     E171 => "unsupported PLCopen element",
@@ -306,7 +306,7 @@ codes! {
 
     // ---- projects, plants and scenarios (automat-project, automat-scenario) ----
     E300 => "invalid project file",
-        "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]`, `[bind]`, `[tasks.NAME]` (watchdog, sensitivity; NAME a task of the program, see docs/watchdog.md), `[retain]`, `[safe_state]`, `[users.NAME]`, `[modbus]` (see docs/modbus.md) and `[runtime]` (realtime, priority 1 to 99, cpus such as `1` or `0,2-3`; see docs/realtime.md).";
+        "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]`, `[bind]`, `[tasks.NAME]` (watchdog, sensitivity; NAME a task of the program, see docs/watchdog.md), `[retain]`, `[safe_state]`, `[users.NAME]`, `[modbus]` (see docs/modbus.md), `[opcua]` (see docs/opcua.md) and `[runtime]` (realtime, priority 1 to 99, cpus such as `1` or `0,2-3`; see docs/realtime.md).";
     E301 => "unknown plant model",
         "`[plant] model` names no model of the plant library. The message lists every known model.";
     E302 => "unknown plant signal",
@@ -323,6 +323,18 @@ codes! {
         "A `[plant.params]` entry or a scenario `plant` command is refused by the model (unknown key or value out of range); the message gives the model's own reason.";
     E308 => "project has no sources",
         "The project's `sources` (or, by default, the `*.st` files beside `automat.toml`) name no readable Structured Text file.";
+    E310 => "plant program unreadable",
+        "`[plant] program = \"FILE\"` names a Structured Text file (relative to `automat.toml`) that cannot be read. A plant written in ST is a PROGRAM in that file; see docs/plants-in-st.md.";
+    E311 => "no plant PROGRAM",
+        "The plant program file must hold exactly one PROGRAM (functions and function blocks beside it are fine) and no CONFIGURATION: the plant runs that PROGRAM once per plant step on its own clock.";
+    E312 => "unbound plant input",
+        "A VAR_INPUT of the plant program (an actuator: what the controller drives) is bound to no controller variable: there is no `[bind]` entry for it and no controller variable of the same name. Rename one of them or add `NAME = \"<variable or %Q address>\"` under `[bind]`.";
+    E313 => "unbound plant output (warning)",
+        "A VAR_OUTPUT of the plant program (a sensor: what the controller reads) is bound to no controller variable: the controller never sees it. It is still visible as `plant.NAME` in scenarios, traces and the live view.";
+    E314 => "plant signal type",
+        "A VAR_INPUT or VAR_OUTPUT of the plant program has a type a signal cannot have: signals are BOOL, integers, bit strings, enumerations or reals (STRING, TIME, arrays, structures and function blocks stay in VAR).";
+    E315 => "invalid plant operator signal",
+        "An entry of `[plant] operators` names no VAR_OUTPUT of the plant program. Operator signals are VAR_OUTPUTs the plant never computes: push-buttons and selectors that scenarios and the live view of `automat run` `press` and `set`.";
     E320 => "scenario syntax error",
         "A line of a `.scn` scenario file does not follow the scenario language (docs/scenarios.md): `name`, `duration`, `seed`, `at TIME ACTION`, `when EVENT [after TIME] then ACTION` and `expect ...` lines; conditions with `= <> < <= > >= AND OR XOR NOT`, arithmetic `+ - * / MOD`, parentheses and the functions rise, fall, change, prev, count, abs, min and max; at most 256 operands and 32 levels of nesting.";
     E321 => "unknown name in a scenario",
@@ -349,6 +361,10 @@ codes! {
         "Two explicit `[[modbus.server.map]]` entries give the same Modbus address of one table: each address of a table maps to one place.";
     E344 => "read-only variable mapped for writing",
         "A CONSTANT or compiler-generated variable (an SFC step flag or time) is mapped where a Modbus client or device would write it: as a coil or holding register of the server, or as the target of a client's read block or status variable. Map it as a discrete input or input register instead.";
+    E345 => "invalid Modbus RTU serial line",
+        "A `[modbus.rtu_server]` or `[[modbus.rtu_device]]` table has a serial setting out of range or in conflict: `device` empty or missing, `baud` outside 50..=4000000, `parity` not none, even or odd, `stop_bits` not 1 or 2, a unit outside 1..=247 (0 is the broadcast address, 248-255 are reserved); a TCP device with serial settings or an RTU device with an `address`; devices on one port with different settings or the same unit; or one port used both by the slave and by devices (a port is either the slave's or the master's). See docs/modbus.md, \"Modbus RTU\".";
+    E346 => "invalid OPC UA configuration",
+        "The `[opcua]` table of `automat.toml` has a key of the wrong form: `listen` that is not PORT or ADDR:PORT (a port alone binds 127.0.0.1), a key that is not `listen`, `pki_dir` or `trust_client_certs`, or a value of the wrong type. See docs/opcua.md.";
 
     // ---- warnings ----
     W001 => "unused variable",

@@ -20,7 +20,7 @@ use crate::cmd_run::{safe_note_of, stop_on_signals, RunArgs};
 use crate::live::{Console, Live, ScaledClock};
 use crate::retain_run::{self, RetainCfg};
 use crate::Outcome;
-use automat_base::render;
+use automat_base::{render, SourceMap};
 use automat_ir::Program;
 use automat_online::{Options, Role, User};
 use automat_project::{bind, Sim};
@@ -40,6 +40,7 @@ use std::sync::{Arc, Mutex};
 pub fn wanted(args: &RunArgs) -> bool {
     args.listen.is_some()
         || args.modbus_server.is_some()
+        || args.opcua.is_some()
         || (args.cycles.is_none()
             && args.duration.is_none()
             && args.scenario.is_none()
@@ -76,6 +77,17 @@ struct LoadedRun {
     project: Option<automat_project::Project>,
     /// `[modbus]` of the project, checked against the program.
     modbus: automat_fieldbus::config::Config,
+    /// `[opcua]` of the project.
+    opcua: Option<OpcuaCfg>,
+}
+
+/// `[opcua]` with its certificate folder made absolute.
+#[derive(Clone, Debug)]
+#[cfg_attr(not(feature = "opcua"), allow(dead_code))]
+struct OpcuaCfg {
+    addr: std::net::SocketAddr,
+    pki_dir: std::path::PathBuf,
+    trust_client_certs: bool,
 }
 
 fn load(args: &RunArgs) -> Result<LoadedRun, Outcome> {
@@ -92,6 +104,7 @@ fn load(args: &RunArgs) -> Result<LoadedRun, Outcome> {
         cycle_ns: args.cycle_time.unwrap_or(10_000_000),
         project: None,
         modbus: Default::default(),
+        opcua: None,
     })
 }
 
@@ -125,13 +138,44 @@ fn load_project(args: &RunArgs, toml: &Path) -> Result<LoadedRun, Outcome> {
         _ => automat_project::safe::build(&project, &program, None),
     }
     .map_err(|d| fail(&d))?;
+    let opcua = opcua_config(&project, &map).map_err(|d| fail(&d))?;
     Ok(LoadedRun {
         safe,
         cycle_ns: args.cycle_time.unwrap_or(project.cycle_time_ns),
         program,
         project: Some(project),
         modbus,
+        opcua,
     })
+}
+
+/// `[opcua]` of the project; the certificates default to
+/// `.automat/opcua-pki` in the project folder.
+fn opcua_config(
+    project: &automat_project::Project,
+    map: &SourceMap,
+) -> Result<Option<OpcuaCfg>, Vec<automat_base::Diagnostic>> {
+    #[cfg(feature = "opcua")]
+    {
+        let dir = project.dir.clone();
+        Ok(
+            automat_opcua::config::load(&map.get(project.file).text, project.file)?.map(|c| {
+                OpcuaCfg {
+                    addr: c.addr,
+                    pki_dir: dir.join(
+                        c.pki_dir
+                            .unwrap_or_else(|| std::path::PathBuf::from(".automat/opcua-pki")),
+                    ),
+                    trust_client_certs: c.trust_client_certs,
+                }
+            }),
+        )
+    }
+    #[cfg(not(feature = "opcua"))]
+    {
+        let _ = (project, map);
+        Ok(None)
+    }
 }
 
 fn users(project: Option<&automat_project::Project>) -> Vec<User> {
@@ -163,6 +207,11 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
                 "{name} does not apply with --listen: the run goes on until Ctrl-C (with --virtual-clock, scans run on `step` commands)"
             )));
         }
+        if given && args.opcua.is_some() {
+            return Err(bad(format!(
+                "{name} does not apply with --opcua: the run goes on in real time until Ctrl-C"
+            )));
+        }
         if given && args.modbus_server.is_some() {
             return Err(bad(format!(
                 "{name} does not apply with --modbus-server: the run goes on in real time until Ctrl-C"
@@ -185,8 +234,46 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         ),
         None => None,
     };
+    let opcua_addr = match &args.opcua {
+        #[cfg(feature = "opcua")]
+        Some(a) => {
+            Some(automat_opcua::config::parse_addr(a).map_err(|e| bad(format!("--opcua: {e}")))?)
+        }
+        #[cfg(not(feature = "opcua"))]
+        Some(_) => {
+            return Err(bad(
+                "--opcua: this automat was built without OPC UA (cargo feature `opcua`)",
+            ))
+        }
+        None => None,
+    };
     let mut loaded = load(args)?;
-    if args.virtual_clock && (modbus_addr.is_some() || loaded.modbus.server.is_some()) {
+    let opcua = match (opcua_addr, loaded.opcua.take()) {
+        (Some(addr), Some(mut c)) => {
+            c.addr = addr;
+            Some(c)
+        }
+        (Some(addr), None) => Some(OpcuaCfg {
+            addr,
+            pki_dir: loaded
+                .project
+                .as_ref()
+                .map_or_else(|| std::path::PathBuf::from("."), |p| p.dir.clone())
+                .join(".automat/opcua-pki"),
+            trust_client_certs: false,
+        }),
+        (None, c) => c,
+    };
+    if args.virtual_clock && opcua.is_some() {
+        return Err(bad(
+            "an OPC UA server needs the real-time clock: --virtual-clock does not apply",
+        ));
+    }
+    if args.virtual_clock
+        && (modbus_addr.is_some()
+            || loaded.modbus.server.is_some()
+            || loaded.modbus.rtu_server.is_some())
+    {
         return Err(bad(
             "a Modbus server needs the real-time clock: --virtual-clock does not apply",
         ));
@@ -212,6 +299,7 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         )));
     }
     let modbus_clients = std::mem::take(&mut loaded.modbus.clients);
+    let modbus_rtu = loaded.modbus.rtu_server.take();
     if loaded.cycle_ns <= 0 {
         return Err(bad("--cycle-time must be longer than 0"));
     }
@@ -294,6 +382,8 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
     });
     let cold = args.cold;
     let budget = args.max_instructions;
+    let opcua_users = users(loaded.project.as_ref());
+    let opcua_sample_ns = loaded.cycle_ns;
     let project = loaded.project;
     let view_console = Arc::clone(&console);
     let view_stop = Arc::clone(&stop);
@@ -384,6 +474,67 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             }
         }
     };
+    #[cfg(feature = "opcua")]
+    let opcua_server = match opcua {
+        None => None,
+        Some(c) => {
+            let opts = automat_opcua::Options {
+                addr: c.addr,
+                pki_dir: c.pki_dir,
+                users: opcua_users,
+                trust_client_certs: c.trust_client_certs,
+                sample_ns: opcua_sample_ns,
+            };
+            match automat_opcua::start(Arc::clone(&session), opts) {
+                Ok(s) => {
+                    eprintln!(
+                        "automat: OPC UA server on opc.tcp://{} ({} variables; {}; docs/opcua.md); Ctrl-C stops",
+                        s.addr,
+                        s.variables,
+                        if s.anonymous {
+                            "anonymous read-only without security, users with Basic256Sha256"
+                        } else {
+                            "users with Basic256Sha256 only"
+                        }
+                    );
+                    Some(s)
+                }
+                Err(e) => {
+                    drop(server);
+                    drop(modbus);
+                    let _ = session.shutdown();
+                    return Err(bad(e));
+                }
+            }
+        }
+    };
+    #[cfg(not(feature = "opcua"))]
+    let _ = (opcua, opcua_users, opcua_sample_ns);
+    let modbus_rtu = match modbus_rtu {
+        None => None,
+        Some(cfg) => {
+            let dev = automat_fieldbus::server::SessionDevice {
+                session: Arc::clone(&session),
+                map: cfg.map,
+            };
+            match automat_fieldbus::rtu_server::start(Arc::new(dev), cfg.line, cfg.unit) {
+                Ok(s) => {
+                    eprintln!(
+                        "automat: Modbus RTU slave {} on {} (docs/modbus.md); Ctrl-C stops",
+                        s.unit,
+                        s.line.describe()
+                    );
+                    Some(s)
+                }
+                Err(e) => {
+                    drop(server);
+                    drop(modbus);
+                    let _ = session.shutdown();
+                    return Err(bad(e));
+                }
+            }
+        }
+    };
     if view {
         crate::live::console(
             Arc::clone(&session),
@@ -396,6 +547,9 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
     let mut end = session.join().map_err(bad)?;
     drop(server);
     drop(modbus);
+    drop(modbus_rtu);
+    #[cfg(feature = "opcua")]
+    drop(opcua_server);
     let mut outcome = Outcome::Ok;
     if let Some(saves) = end.retain.take() {
         let saved = retain_run::report(

@@ -143,6 +143,11 @@ pub struct RunArgs {
     /// over `[modbus.server] listen` of automat.toml. Runs until Ctrl-C.
     #[arg(long, value_name = "[ADDR:]PORT")]
     pub(crate) modbus_server: Option<String>,
+    /// Serve the PLC as an OPC UA server on 127.0.0.1:PORT or ADDR:PORT
+    /// (docs/opcua.md); wins over `[opcua] listen` of automat.toml. Runs
+    /// until Ctrl-C.
+    #[arg(long, value_name = "[ADDR:]PORT")]
+    pub(crate) opcua: Option<String>,
     /// --listen: the token (engineer rights) is the content of FILE; a
     /// missing FILE is created with a random token, readable only by you.
     #[arg(long, value_name = "FILE", requires = "listen")]

@@ -160,9 +160,14 @@ pub(crate) fn compile_project(args: &RunArgs, toml: &Path) -> Result<Compiled, O
         }
     };
     automat_project::tasks::apply(&project.tasks, &mut program).map_err(|d| fail(&map, &d))?;
+    // `[modbus]` and `[opcua]` are checked in every run (their errors are
+    // the project's), though a simulation opens no socket.
     let modbus =
         automat_fieldbus::config::load(&map.get(project.file).text, project.file, &program)
             .map_err(|d| fail(&map, &d))?;
+    #[cfg(feature = "opcua")]
+    automat_opcua::config::load(&map.get(project.file).text, project.file)
+        .map_err(|d| fail(&map, &d))?;
     crate::engines::default_watchdog(&mut program, args.watchdog);
     Ok(Compiled {
         map,

@@ -40,6 +40,8 @@ fn project_file_errors_point_into_automat_toml() {
         ("e342_modbus_type", "e342_modbus_type/automat.toml:12:7: error[E342]: `Ctrl.l1` is BOOL: registers take one elementary value of 8 to 64 bits"),
         ("e343_modbus_overlap", "e343_modbus_overlap/automat.toml:19:11: error[E343]: discrete_inputs address 100 is mapped twice: to `Ctrl.l1` and to `Ctrl.l2`"),
         ("e344_modbus_constant", "e344_modbus_constant/automat.toml:12:7: error[E344]: `Ctrl.DWELL_TIME` is a CONSTANT: clients would write it as holding_registers"),
+        ("e345_modbus_serial", "e345_modbus_serial/automat.toml:10:8: error[E345]: baud 10 is outside 50..=4000000"),
+        ("e346_bad_opcua", "e346_bad_opcua/automat.toml:9:10: error[E346]: listen: `nowhere` is not PORT or ADDR:PORT"),
     ];
     for (dir, want) in cases {
         let (code, _, err) = automat(&["run", dir, "--cycles", "1"]);
@@ -49,6 +51,47 @@ fn project_file_errors_point_into_automat_toml() {
             "{dir}: want `{want}` in\n{err}"
         );
     }
+}
+
+/// A plant written in ST (E310–E315): each error at its place, in
+/// automat.toml or in the plant's own file.
+#[test]
+fn st_plant_errors_point_into_their_files() {
+    let cases = [
+        ("e310_plant_unreadable", "e310_plant_unreadable/automat.toml:6:11: error[E310]: cannot read the plant program `e310_plant_unreadable/missing.st`: "),
+        ("e311_no_plant_program", "e311_no_plant_program/plant.st:1:1: error[E311]: the plant program `plant.st` has no PROGRAM"),
+        ("e312_e313_unbound_plant_signals", "e312_e313_unbound_plant_signals/plant.st:3:5: error[E312]: VAR_INPUT `pump` of the plant program `plant.st` is bound to nothing: the controller has no variable `pump` and [bind] has no entry for it"),
+        ("e312_e313_unbound_plant_signals", "e312_e313_unbound_plant_signals/plant.st:6:5: warning[E313]: VAR_OUTPUT `level` of the plant program `plant.st` is bound to nothing: the controller does not see it"),
+        ("e314_plant_signal_type", "e314_plant_signal_type/plant.st:7:5: error[E314]: plant signal `state` is no BOOL, integer, bit string, enumeration or real"),
+        ("e315_plant_operator", "e315_plant_operator/automat.toml:7:14: error[E315]: operator `Start` is no VAR_OUTPUT of `plant.st`"),
+    ];
+    for (dir, want) in cases {
+        let (code, _, err) = automat(&["run", dir, "--cycles", "1"]);
+        assert_eq!(code, Some(1), "{dir}: {err}");
+        assert!(
+            err.lines().any(|l| l.starts_with(want)),
+            "{dir}: want `{want}` in\n{err}"
+        );
+    }
+}
+
+/// A plant program that faults freezes the plant, and the scenario fails
+/// on it with the fault's place in the plant file.
+#[test]
+fn a_faulting_plant_program_fails_the_scenario() {
+    let out_dir = std::env::temp_dir().join(format!("automat-stfault-{}", std::process::id()));
+    let (code, out, _) = automat(&[
+        "test",
+        "st_plant_fault",
+        "--out",
+        out_dir.to_str().unwrap_or("."),
+    ]);
+    assert_eq!(code, Some(1), "{out}");
+    assert!(
+        out.contains("    st_plant_fault/scenarios/fault.scn: the plant\n      failed at T#500ms: the plant program stopped at plant time 500 ms: st_plant_fault/plant.st:14:10: fault in Tank: division by zero (50 / 0)\n"),
+        "{out}"
+    );
+    assert_eq!(out.lines().last(), Some("0 passed, 1 failed"));
 }
 
 #[test]

@@ -81,25 +81,25 @@ fn a_failing_scenario_names_assertion_time_and_values_and_writes_trace_and_diagr
     assert_eq!(
         lines.next(),
         Some(
-            "time,Pornire,l1,l2,l3,l4,M1S,M1D,M2S,M2J,plant.x,plant.y,plant.cycles,plant.conflicts"
+            "time,Pornire,l1,l2,l3,l4,M1S,M1D,M2S,M2J,plant.x,plant.y,plant.cycles,plant.conflicts,plant.end_stops"
         )
     );
     assert_eq!(
         lines.next(),
-        Some("T#0s,FALSE,TRUE,FALSE,TRUE,FALSE,FALSE,FALSE,FALSE,FALSE,0,0,0,0")
+        Some("T#0s,FALSE,TRUE,FALSE,TRUE,FALSE,FALSE,FALSE,FALSE,FALSE,0,0,0,0,0")
     );
     // the press at 500 ms is seen by the scan at 500 ms; up from the next scan
     assert_eq!(
         csv.lines().nth(51),
-        Some("T#500ms,TRUE,TRUE,FALSE,TRUE,FALSE,FALSE,FALSE,TRUE,FALSE,0,0,0,0")
+        Some("T#500ms,TRUE,TRUE,FALSE,TRUE,FALSE,FALSE,FALSE,TRUE,FALSE,0,0,0,0,0")
     );
     assert_eq!(
         csv.lines().nth(52),
-        Some("T#510ms,TRUE,TRUE,FALSE,TRUE,FALSE,FALSE,FALSE,TRUE,FALSE,0,0.01,0,0")
+        Some("T#510ms,TRUE,TRUE,FALSE,TRUE,FALSE,FALSE,FALSE,TRUE,FALSE,0,0.01,0,0,0")
     );
     assert_eq!(csv.lines().count(), 1 + 1000);
     let svg = std::fs::read_to_string(out_dir.join("wrong.fail.svg")).expect("diagram");
-    assert_eq!(svg.matches("<text class=\"name\"").count(), 13);
+    assert_eq!(svg.matches("<text class=\"name\"").count(), 14);
 }
 
 #[test]

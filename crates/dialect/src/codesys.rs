@@ -143,8 +143,12 @@ impl Uses<'_> {
 /// becomes a hidden global `__STAT_<POU>_<name>` (its initial value set
 /// once, at a cold start, like any global) and the body's uses of the name
 /// are renamed to it; [`implicit_externals`], run after this, gives the
-/// POU the VAR_EXTERNAL that makes the global visible. A VAR_STAT in a
-/// METHOD or in a function block with methods is E160 (not yet).
+/// POU the VAR_EXTERNAL that makes the global visible (a METHOD gets its
+/// VAR_EXTERNAL here: methods are not POUs until `desugar_oop`).
+/// `VAR_INST` of a METHOD: its variables move into the function block as
+/// hidden variables `__INST_<FB>_<method>_<name>`, kept with the instance.
+/// VAR_STAT among a function block's own variables when it has methods,
+/// and VAR_INST outside a method, are E160.
 pub fn static_vars(
     units: &mut [SourceUnit],
     is_user: &dyn Fn(&SourceUnit) -> bool,
@@ -156,6 +160,13 @@ pub fn static_vars(
         for item in &mut unit.items {
             match item {
                 Item::Pou(pou) => {
+                    for b in pou.var_blocks.iter().filter(|b| b.kind == VarKind::Inst) {
+                        diags.push(automat_base::Diagnostic::error(
+                            automat_base::Code::E160,
+                            b.span,
+                            "`VAR_INST` belongs in a METHOD of a function block",
+                        ));
+                    }
                     let (stat, rest): (Vec<VarBlock>, Vec<VarBlock>) =
                         std::mem::take(&mut pou.var_blocks)
                             .into_iter()
@@ -182,19 +193,72 @@ pub fn static_vars(
                     walk::stmts(stmts, &mut Rename { renames: &renames });
                 }
                 Item::Class(class) => {
-                    let in_methods = class
-                        .methods
+                    let owner = interner.name(class.name.sym).to_string();
+                    for b in class
+                        .var_blocks
                         .iter()
-                        .flat_map(|m| m.var_blocks.iter())
-                        .chain(class.var_blocks.iter())
-                        .filter(|b| b.kind == VarKind::Static);
-                    for b in in_methods {
+                        .filter(|b| matches!(b.kind, VarKind::Static | VarKind::Inst))
+                    {
                         diags.push(automat_base::Diagnostic::error(
                             automat_base::Code::E160,
                             b.span,
-                            "`VAR_STAT` in a METHOD or a function block with methods is not supported yet: declare the variable in a global variable list",
+                            if b.kind == VarKind::Inst {
+                                "`VAR_INST` belongs in a METHOD: a function block's own variables are kept in its instance already"
+                            } else {
+                                "`VAR_STAT` among the variables of a function block with methods is not supported yet: declare it in a global variable list"
+                            },
                         ));
                     }
+                    let mut moved = Vec::new();
+                    for m in &mut class.methods {
+                        let method = interner.name(m.name.sym).to_string();
+                        let (mine, rest): (Vec<VarBlock>, Vec<VarBlock>) =
+                            std::mem::take(&mut m.var_blocks)
+                                .into_iter()
+                                .partition(|b| matches!(b.kind, VarKind::Static | VarKind::Inst));
+                        m.var_blocks = rest;
+                        if mine.is_empty() {
+                            continue;
+                        }
+                        let mut renames: HashMap<Symbol, Symbol> = HashMap::new();
+                        for mut block in mine {
+                            let prefix = if block.kind == VarKind::Static {
+                                "__STAT"
+                            } else {
+                                "__INST"
+                            };
+                            let mut externals = block.clone();
+                            for d in &mut block.decls {
+                                for n in &mut d.names {
+                                    let hidden = format!(
+                                        "{prefix}_{owner}_{method}_{}",
+                                        interner.name(n.sym)
+                                    );
+                                    let sym = interner.intern(&hidden);
+                                    renames.insert(n.sym, sym);
+                                    n.sym = sym;
+                                }
+                            }
+                            if block.kind == VarKind::Static {
+                                // A hidden global, and the method's VAR_EXTERNAL of it.
+                                externals.decls = block.decls.clone();
+                                for d in &mut externals.decls {
+                                    d.init = None;
+                                    d.location = None;
+                                }
+                                externals.kind = VarKind::External;
+                                m.var_blocks.push(externals);
+                                block.kind = VarKind::Global;
+                                globals.push(block);
+                            } else {
+                                // A variable of the function block's instance.
+                                block.kind = VarKind::Local;
+                                moved.push(block);
+                            }
+                        }
+                        walk::stmts(&mut m.body, &mut Rename { renames: &renames });
+                    }
+                    class.var_blocks.extend(moved);
                 }
                 _ => {}
             }

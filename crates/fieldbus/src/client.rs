@@ -1,4 +1,5 @@
-//! The Modbus TCP client (master) for remote I/O.
+//! The Modbus client (master) for remote I/O, over TCP or over a serial
+//! line (RTU, `rtu_client.rs`).
 //!
 //! Each configured device has a poller thread of its own: it connects,
 //! and every `period` reads each `read` block and writes each `write`
@@ -14,11 +15,18 @@
 //!
 //! `last_error` codes: 0 none, 1–11 the device's exception code, −1 a
 //! timeout, −2 no connection (refused, closed, reset), −3 a malformed or
-//! mismatched response.
+//! mismatched response (over RTU also a CRC error or another unit
+//! answering).
+//!
+//! RTU devices on one serial port share it ([`crate::rtu_client::Bus`]):
+//! their pollers take turns, one request and its response at a time.
 
 use crate::map::WordOrder;
 use crate::pdu::{self, Request, Response, ResponseError, Table};
+use crate::rtu_client::Bus;
+use crate::serial::Line;
 use automat_session::Exchange;
+use std::collections::BTreeMap;
 use std::io::{ErrorKind, Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -67,10 +75,17 @@ pub struct StatusPlaces {
     pub last_error: Option<(usize, usize)>,
 }
 
+/// How a device is reached.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Link {
+    Tcp(SocketAddr),
+    Rtu(Line),
+}
+
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct DeviceSpec {
     pub name: String,
-    pub addr: SocketAddr,
+    pub link: Link,
     pub unit: u8,
     pub period: Duration,
     pub timeout: Duration,
@@ -133,7 +148,16 @@ impl Clients {
     pub fn start(specs: Vec<DeviceSpec>) -> Result<Clients, String> {
         let stop = Arc::new(AtomicBool::new(false));
         let mut devices = Vec::new();
+        let mut buses: BTreeMap<String, Arc<Bus>> = BTreeMap::new();
         for spec in specs {
+            let bus = match &spec.link {
+                Link::Tcp(_) => None,
+                Link::Rtu(line) => Some(Arc::clone(
+                    buses
+                        .entry(line.device.clone())
+                        .or_insert_with(|| Arc::new(Bus::new(line.clone()))),
+                )),
+            };
             let shared = Arc::new(Mutex::new(Shared {
                 inputs: vec![None; spec.reads.len()],
                 outputs: vec![None; spec.writes.len()],
@@ -142,7 +166,7 @@ impl Clients {
             let (s2, stop2, spec2) = (Arc::clone(&shared), Arc::clone(&stop), spec.clone());
             let thread = std::thread::Builder::new()
                 .name(format!("automat-modbus-{}", spec.name))
-                .spawn(move || poll(&spec2, &s2, &stop2))
+                .spawn(move || poll(&spec2, &s2, &stop2, bus))
                 .map_err(|e| format!("cannot start the Modbus client thread: {e}"))?;
             devices.push(Device {
                 spec,
@@ -355,7 +379,7 @@ impl Exchange for Clients {
 
 /// Why one exchange with the device failed.
 #[derive(Debug)]
-enum Failure {
+pub(crate) enum Failure {
     Timeout,
     Connection(String),
     Response(ResponseError),
@@ -370,7 +394,7 @@ impl Failure {
             Failure::Response(ResponseError::Malformed(_)) => -3,
         }
     }
-    fn text(&self) -> String {
+    pub(crate) fn text(&self) -> String {
         match self {
             Failure::Timeout => "timeout".into(),
             Failure::Connection(e) => format!("connection: {e}"),
@@ -383,11 +407,35 @@ impl Failure {
     }
 }
 
-fn io_failure(e: std::io::Error) -> Failure {
+pub(crate) fn io_failure(e: std::io::Error) -> Failure {
     if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) {
         Failure::Timeout
     } else {
         Failure::Connection(e.to_string())
+    }
+}
+
+/// One request and its response, however the device is reached.
+trait Transport {
+    fn exchange(&mut self, req: &Request) -> Result<Response, Failure>;
+}
+
+impl Transport for Conn {
+    fn exchange(&mut self, req: &Request) -> Result<Response, Failure> {
+        Conn::exchange(self, req)
+    }
+}
+
+/// A device on a serial line: its unit on the shared bus.
+struct RtuConn {
+    bus: Arc<Bus>,
+    unit: u8,
+    timeout: Duration,
+}
+
+impl Transport for RtuConn {
+    fn exchange(&mut self, req: &Request) -> Result<Response, Failure> {
+        self.bus.exchange(self.unit, req, self.timeout)
     }
 }
 
@@ -484,7 +532,11 @@ fn write_request(b: &Block, v: &Values) -> Option<Request> {
 }
 
 /// With retries: the first success, or the last failure.
-fn with_retries(conn: &mut Conn, req: &Request, retries: u32) -> Result<Response, Failure> {
+fn with_retries(
+    conn: &mut dyn Transport,
+    req: &Request,
+    retries: u32,
+) -> Result<Response, Failure> {
     let mut last = Failure::Timeout;
     for _ in 0..=retries {
         match conn.exchange(req) {
@@ -497,7 +549,11 @@ fn with_retries(conn: &mut Conn, req: &Request, retries: u32) -> Result<Response
 }
 
 /// One poll of every block; the first failure ends it.
-fn poll_once(spec: &DeviceSpec, conn: &mut Conn, shared: &Mutex<Shared>) -> Result<(), Failure> {
+fn poll_once(
+    spec: &DeviceSpec,
+    conn: &mut dyn Transport,
+    shared: &Mutex<Shared>,
+) -> Result<(), Failure> {
     for (i, b) in spec.reads.iter().enumerate() {
         let r = with_retries(conn, &read_request(b), spec.retries)?;
         let v = match r {
@@ -545,8 +601,8 @@ fn nap(until: Instant, stop: &AtomicBool) {
     }
 }
 
-fn poll(spec: &DeviceSpec, shared: &Mutex<Shared>, stop: &AtomicBool) {
-    let mut conn: Option<Conn> = None;
+fn poll(spec: &DeviceSpec, shared: &Mutex<Shared>, stop: &AtomicBool, bus: Option<Arc<Bus>>) {
+    let mut conn: Option<Box<dyn Transport>> = None;
     let mut next = Instant::now();
     loop {
         let stopping = stop.load(Ordering::Relaxed);
@@ -554,20 +610,32 @@ fn poll(spec: &DeviceSpec, shared: &Mutex<Shared>, stop: &AtomicBool) {
             if stopping {
                 return;
             }
-            match Conn::connect(spec.addr, spec.unit, spec.timeout) {
-                Ok(c) => {
-                    conn = Some(c);
-                    lock(shared).connected = true;
+            match (&spec.link, &bus) {
+                (Link::Tcp(addr), _) => match Conn::connect(*addr, spec.unit, spec.timeout) {
+                    Ok(c) => {
+                        conn = Some(Box::new(c));
+                        lock(shared).connected = true;
+                    }
+                    Err(e) => failed(spec, shared, &io_failure(e)),
+                },
+                // A serial line has no connection: the device counts as
+                // connected once it answers.
+                (Link::Rtu(_), Some(bus)) => {
+                    conn = Some(Box::new(RtuConn {
+                        bus: Arc::clone(bus),
+                        unit: spec.unit,
+                        timeout: spec.timeout,
+                    }))
                 }
-                Err(e) => failed(spec, shared, &io_failure(e)),
+                (Link::Rtu(_), None) => return,
             }
         }
         if let Some(c) = &mut conn {
             let result = if stopping {
                 // The last outputs (the safe state) once more, then stop.
-                final_write(spec, c, shared)
+                final_write(spec, c.as_mut(), shared)
             } else {
-                poll_once(spec, c, shared)
+                poll_once(spec, c.as_mut(), shared)
             };
             match result {
                 Ok(()) => {
@@ -595,7 +663,11 @@ fn poll(spec: &DeviceSpec, shared: &Mutex<Shared>, stop: &AtomicBool) {
     }
 }
 
-fn final_write(spec: &DeviceSpec, conn: &mut Conn, shared: &Mutex<Shared>) -> Result<(), Failure> {
+fn final_write(
+    spec: &DeviceSpec,
+    conn: &mut dyn Transport,
+    shared: &Mutex<Shared>,
+) -> Result<(), Failure> {
     let outputs = lock(shared).outputs.clone();
     for (b, v) in spec.writes.iter().zip(outputs) {
         if let Some(req) = v.as_ref().and_then(|v| write_request(b, v)) {

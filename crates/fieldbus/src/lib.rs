@@ -1,4 +1,4 @@
-//! Fieldbus I/O of automat: Modbus TCP (`docs/modbus.md`).
+//! Fieldbus I/O of automat: Modbus TCP and RTU (`docs/modbus.md`).
 //!
 //! - [`pdu`]: the MBAP/PDU codec of both sides (function codes 1, 2, 3,
 //!   4, 5, 6, 15, 16, 23), every limit of the specification checked; no I/O.
@@ -10,7 +10,12 @@
 //! - [`client`]: the client (master) for remote I/O: a poller thread per
 //!   device, exchanged with the scan by copying only ([`client::Clients`]
 //!   is the session's `Exchange`).
-//! - [`config`]: `[modbus]` in `automat.toml` (E340–E344).
+//! - [`rtu`]: the RTU frame (unit, PDU, CRC-16) and its decoder; no I/O.
+//!   [`serial`]: line settings and opening the port; [`rtu_server`] the
+//!   slave over the same [`server::Device`]; [`rtu_client`] the master's
+//!   shared bus, used by [`client`].
+//! - [`config`]: `[modbus]` in `automat.toml` (E340–E344), one file per
+//!   table kind.
 //! - [`plant`]: a virtual plant as a Modbus device.
 //!
 //! Invariants: nothing here runs on the scan thread but the copies of
@@ -23,4 +28,8 @@ pub mod config;
 pub mod map;
 pub mod pdu;
 pub mod plant;
+pub mod rtu;
+pub mod rtu_client;
+pub mod rtu_server;
+pub mod serial;
 pub mod server;

@@ -3,7 +3,7 @@
 //! dead device seen in the status, its inputs zeroed (or held), without
 //! the exchange ever waiting.
 
-use automat_fieldbus::client::{Block, Clients, DeviceSpec, OnLoss, StatusPlaces, Target};
+use automat_fieldbus::client::{Block, Clients, DeviceSpec, Link, OnLoss, StatusPlaces, Target};
 use automat_fieldbus::map::WordOrder;
 use automat_fieldbus::pdu::{Exception, Table};
 use automat_fieldbus::server::{self, Device, Options};
@@ -55,7 +55,7 @@ impl Device for Mem {
 fn spec(addr: SocketAddr, on_loss: OnLoss) -> DeviceSpec {
     DeviceSpec {
         name: "rio".into(),
-        addr,
+        link: Link::Tcp(addr),
         unit: 1,
         period: Duration::from_millis(10),
         timeout: Duration::from_millis(200),

@@ -2,7 +2,7 @@
 //! Modbus table, mutated in many deterministic ways
 //! (`crates/scenario/tests/support/mutate.rs`), is read with
 //! `config::load` against a compiled program. It must give a config or
-//! E340–E344 diagnostics whose spans lie inside the text; nothing may
+//! E340–E345 diagnostics whose spans lie inside the text; nothing may
 //! panic or hang.
 
 #[path = "../../scenario/tests/support/mutate.rs"]
@@ -102,6 +102,33 @@ table = "holding_registers"
 address = 4
 count = 1
 from = "%QW0"
+
+[modbus.rtu_server]
+device = "/dev/ttyS1"
+baud = 9600
+parity = "even"
+stop_bits = 1
+unit = 7
+
+[[modbus.rtu_server.map]]
+var = "Main.speed"
+table = "input_registers"
+address = 200
+
+[[modbus.rtu_device]]
+name = "drive"
+device = "/dev/ttyUSB0"
+baud = 38400
+parity = "none"
+stop_bits = 2
+unit = 4
+connected = "Main.ok"
+
+[[modbus.rtu_device.read]]
+table = "input_registers"
+address = 0
+count = 1
+to = "%IW0"
 "#;
 
 const WORDS: &[&str] = &[
@@ -110,6 +137,17 @@ const WORDS: &[&str] = &[
     "[[modbus.client]]",
     "[[modbus.client.read]]",
     "[[modbus.client.write]]",
+    "[modbus.rtu_server]",
+    "[[modbus.rtu_device]]",
+    "[[modbus.rtu_device.read]]",
+    "device =",
+    "baud =",
+    "parity =",
+    "stop_bits =",
+    "unit =",
+    "\"odd\"",
+    "\"/dev/ttyS1\"",
+    "248",
     "listen =",
     "var =",
     "table =",
@@ -151,7 +189,8 @@ fn mutated_modbus_tables_never_crash() {
     let id = map.add("automat.toml", TOML.to_string());
     let cfg = config::load(TOML, id, &program)
         .unwrap_or_else(|d| panic!("{}", automat_base::render::render_report(&map, &d)));
-    assert_eq!(cfg.clients.len(), 1);
+    assert_eq!(cfg.clients.len(), 2);
+    assert!(cfg.rtu_server.is_some());
     assert_eq!(cfg.clients[0].reads[1].count, 8);
     let (mut valid, mut failures) = (0, Vec::new());
     for seed in 0..MUTANTS as u64 {
@@ -169,7 +208,12 @@ fn mutated_modbus_tables_never_crash() {
                         assert!(
                             matches!(
                                 d.code,
-                                Code::E340 | Code::E341 | Code::E342 | Code::E343 | Code::E344
+                                Code::E340
+                                    | Code::E341
+                                    | Code::E342
+                                    | Code::E343
+                                    | Code::E344
+                                    | Code::E345
                             ),
                             "{:?}",
                             d.code

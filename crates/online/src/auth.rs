@@ -136,6 +136,18 @@ pub fn valid_hash(hash: &str) -> bool {
     PasswordHash::new(hash).is_ok_and(|h| h.algorithm.as_str() == "argon2id")
 }
 
+/// The role of `user` when `password` is theirs (slow by design: argon2id;
+/// call it off async threads). Also the OPC UA server's check.
+pub fn verify(users: &[User], user: &str, password: &str) -> Option<Role> {
+    users.iter().find(|u| u.name == user).and_then(|u| {
+        let hash = PasswordHash::new(&u.hash).ok()?;
+        Argon2::default()
+            .verify_password(password.as_bytes(), &hash)
+            .ok()
+            .map(|()| u.role)
+    })
+}
+
 impl Auth {
     pub fn new(token: Option<String>, users: Vec<User>) -> Auth {
         Auth {
@@ -181,13 +193,7 @@ impl Auth {
                 }
             }
         }
-        let ok = self.users.iter().find(|u| u.name == user).and_then(|u| {
-            let hash = PasswordHash::new(&u.hash).ok()?;
-            Argon2::default()
-                .verify_password(password.as_bytes(), &hash)
-                .ok()
-                .map(|()| u.role)
-        });
+        let ok = verify(&self.users, user, password);
         match ok {
             Some(role) => {
                 let token = random_token().map_err(|_| LoginError::Denied)?;

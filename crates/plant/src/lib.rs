@@ -82,10 +82,12 @@ pub struct Quantity {
 pub trait Plant {
     /// The model's name as used in project files (`crane`).
     fn name(&self) -> &'static str;
-    /// Every signal, in a fixed order; indices below refer to it.
-    fn signals(&self) -> &'static [Signal];
+    /// Every signal, in a fixed order; indices below refer to it. (Borrowed
+    /// from the model, not `'static`: a plant written in ST learns its
+    /// signals from its program.)
+    fn signals(&self) -> &[Signal];
     /// Every observable quantity, in a fixed order.
-    fn quantities(&self) -> &'static [Quantity];
+    fn quantities(&self) -> &[Quantity];
     /// The integration step the dynamics need, in nanoseconds; the framework
     /// calls [`Plant::step`] with exactly this `dt` (several times per scan
     /// when the scan is longer).
@@ -109,6 +111,12 @@ pub trait Plant {
     fn command(&mut self, name: &str, args: &[(&str, f64)]) -> Result<(), String> {
         let _ = args;
         Err(format!("the {} model has no command `{name}`", self.name()))
+    }
+    /// Why the model stopped, if it did: a plant written in ST whose program
+    /// faulted (a division by zero, an endless loop) freezes and says so
+    /// here; the built-in models never fault.
+    fn fault(&self) -> Option<String> {
+        None
     }
     /// Commands this model accepts, with a one-line description each.
     fn commands(&self) -> &'static [(&'static str, &'static str)] {

@@ -225,7 +225,7 @@ impl Ex<'_> {
     fn section(&mut self, o: &mut String, b: &VarBlock) {
         let tag = match b.kind {
             // VAR_STAT has no TC6 section; the dialect turns it into globals first.
-            VarKind::Local | VarKind::Static => "localVars",
+            VarKind::Local | VarKind::Static | VarKind::Inst => "localVars",
             VarKind::Input => "inputVars",
             VarKind::Output => "outputVars",
             VarKind::InOut => "inOutVars",

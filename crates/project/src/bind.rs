@@ -8,7 +8,9 @@
 //! - a BOOL signal needs a BOOL variable; an Int or Real signal a numeric
 //!   one (integer, bit string or real);
 //! - an actuator bound to nothing is an error (E305), a sensor or operator
-//!   signal bound to nothing a warning (E306): the PLC never sees it.
+//!   signal bound to nothing a warning (E306): the PLC never sees it; for a
+//!   plant written in ST the same are E312 and E313, at the declaration in
+//!   the plant file.
 
 use crate::file::PlantSpec;
 use automat_base::{Code, Diagnostic, Span};
@@ -52,6 +54,30 @@ pub fn compatible(k: Kind, t: &PlaceType) -> bool {
     match k {
         Kind::Bool => *e == E::Bool,
         Kind::Int | Kind::Real => e.is_num() || e.is_bit_string(),
+    }
+}
+
+/// E312 / E313: a signal of a plant in ST bound to nothing.
+fn st_unbound(st: &crate::st_plant::StPlantSpec, name: &str, dir: Dir, span: Span) -> Diagnostic {
+    if dir == Dir::Actuator {
+        Diagnostic::error(
+            Code::E312,
+            span,
+            format!(
+                "VAR_INPUT `{name}` of the plant program `{}` is bound to nothing: the controller has no variable `{name}` and [bind] has no entry for it",
+                st.written
+            ),
+        )
+        .with_note(format!("add `{name} = \"<controller variable or %Q address>\"` under [bind] in automat.toml"))
+    } else {
+        Diagnostic::warning(
+            Code::E313,
+            span,
+            format!(
+                "VAR_OUTPUT `{name}` of the plant program `{}` is bound to nothing: the controller does not see it",
+                st.written
+            ),
+        )
     }
 }
 
@@ -101,6 +127,15 @@ pub fn bind(
         let place = match resolve(program, &path) {
             Ok(p) => p,
             Err(e) => {
+                // A plant in ST: the message points at the declaration.
+                let decl = spec
+                    .program
+                    .as_ref()
+                    .and_then(|st| Some((st, st.compiled.as_ref()?.var(s.name)?)));
+                if let (None, Some((st, v))) = (ex, decl) {
+                    diags.push(st_unbound(st, s.name, s.dir, v.span));
+                    continue;
+                }
                 if ex.is_some() {
                     diags.push(Diagnostic::error(
                         Code::E303,

@@ -26,6 +26,7 @@ use automat_plant::{models, Plant};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use toml::Spanned;
 
 use crate::tasks::TaskSpec;
@@ -57,6 +58,10 @@ struct RawFile {
     #[serde(default)]
     #[allow(dead_code)]
     modbus: Option<serde::de::IgnoredAny>,
+    /// `[opcua]`: read and checked by `automat-opcua` from the same text.
+    #[serde(default)]
+    #[allow(dead_code)]
+    opcua: Option<serde::de::IgnoredAny>,
 }
 
 #[derive(Deserialize)]
@@ -121,7 +126,12 @@ struct RawProject {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawPlant {
-    model: Spanned<String>,
+    model: Option<Spanned<String>>,
+    /// A plant written in ST (`crate::st_plant`), instead of `model`.
+    program: Option<Spanned<String>>,
+    step: Option<Spanned<String>>,
+    #[serde(default)]
+    operators: Vec<Spanned<String>>,
     seed: Option<u64>,
     #[serde(default)]
     params: BTreeMap<Spanned<String>, Spanned<f64>>,
@@ -140,8 +150,12 @@ pub struct BindSpec {
 /// The `[plant]` table.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlantSpec {
+    /// A built-in model's name, or for a plant in ST the file as written.
     pub model: String,
+    /// `model = ...` (or `program = ...`) in the project file.
     pub model_span: Span,
+    /// `program = "plant.st"`: the plant is that PROGRAM.
+    pub program: Option<crate::st_plant::StPlantSpec>,
     pub seed: u64,
     /// `[plant.params]`, applied as `command("set", [(key, value)])`.
     pub params: Vec<(String, f64, Span)>,
@@ -218,7 +232,23 @@ impl Project {
         let Some(spec) = &self.plant else {
             return Ok(None);
         };
-        let Some(mut plant) = models::by_name(&spec.model) else {
+        let built =
+            match &spec.program {
+                Some(st) => match &st.compiled {
+                    Some(c) => Some(Box::new(crate::st_plant::StPlant::new(st, Arc::clone(c)))
+                        as Box<dyn Plant>),
+                    // Read with `parse` alone (no source map for the plant file).
+                    None => {
+                        return Err(vec![Diagnostic::error(
+                            Code::E310,
+                            st.span,
+                            format!("the plant program `{}` was not compiled", st.written),
+                        )])
+                    }
+                },
+                None => models::by_name(&spec.model),
+            };
+        let Some(mut plant) = built else {
             return Err(vec![Diagnostic::error(
                 Code::E301,
                 spec.model_span,
@@ -300,7 +330,17 @@ pub fn load(path: &Path, map: &mut SourceMap) -> Result<Project, Vec<Diagnostic>
         )]
     })?;
     let file = map.add(path.display().to_string(), text.clone());
-    parse(path, file, &text)
+    let mut project = parse(path, file, &text)?;
+    if let Some(st) = project.plant.as_mut().and_then(|p| p.program.as_mut()) {
+        let compiled = crate::st_plant::compile(st, map)?;
+        if !compiled.warnings.is_empty() {
+            project
+                .warnings
+                .push(compiled.warnings.trim_end().to_string());
+        }
+        st.compiled = Some(Arc::new(compiled));
+    }
+    Ok(project)
 }
 
 /// The largest project file read: a real one is a few KB; a bigger one is
@@ -367,9 +407,37 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
             Vec::new()
         }
     };
-    let plant = raw.plant.map(|p| PlantSpec {
-        model: p.model.get_ref().clone(),
-        model_span: span_of(file, p.model.span()),
+    let mut sources = sources;
+    let plant = raw.plant.map(|p| {
+        let program = plant_program(&dir, file, &p, &mut errors);
+        if let Some(st) = &program {
+            // The plant's file is no source of the controller, even beside
+            // automat.toml where sources are found by default.
+            let same = |a: &Path| {
+                a == st.path.as_path()
+                    || a.canonicalize().ok().zip(st.path.canonicalize().ok()).is_some_and(|(x, y)| x == y)
+            };
+            sources.retain(|s| !same(s));
+            if sources.is_empty() {
+                errors.push(Diagnostic::error(
+                    Code::E308,
+                    Span::new(file, 0, 0),
+                    format!(
+                        "the project has no Structured Text sources besides its plant program (*.st in {})",
+                        dir.display()
+                    ),
+                ));
+            }
+        }
+        let (model, model_span) = match (&p.model, &program) {
+            (Some(m), _) => (m.get_ref().clone(), span_of(file, m.span())),
+            (None, Some(st)) => (st.written.clone(), st.span),
+            (None, None) => (String::new(), Span::new(file, 0, 0)),
+        };
+        PlantSpec {
+        model,
+        model_span,
+        program,
         seed: p.seed.unwrap_or(1),
         params: p
             .params
@@ -386,6 +454,7 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
                 target_span: span_of(file, v.span()),
             })
             .collect(),
+    }
     });
     let retain = retain_spec(&dir, file, raw.retain, &mut errors);
     let mut safe_state = Vec::new();
@@ -437,6 +506,85 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
         users,
         runtime,
         warnings: walk.warning().into_iter().collect(),
+    })
+}
+
+/// `[plant] program`, `step` and `operators` checked (the program is
+/// compiled by [`load`]); exactly one of `model` and `program`.
+fn plant_program(
+    dir: &Path,
+    file: FileId,
+    p: &RawPlant,
+    errors: &mut Vec<Diagnostic>,
+) -> Option<crate::st_plant::StPlantSpec> {
+    let Some(prog) = &p.program else {
+        if p.model.is_none() {
+            errors.push(Diagnostic::error(
+                Code::E300,
+                Span::new(file, 0, 0),
+                "[plant] needs `model` (a built-in model) or `program` (a plant written in ST)",
+            ));
+        }
+        for (what, span) in [
+            ("step", p.step.as_ref().map(|s| s.span())),
+            ("operators", p.operators.first().map(|s| s.span())),
+        ] {
+            if let Some(r) = span {
+                errors.push(Diagnostic::error(
+                    Code::E300,
+                    span_of(file, r),
+                    format!(
+                        "[plant] `{what}` is for a plant written in ST (`program = \"plant.st\"`)"
+                    ),
+                ));
+            }
+        }
+        return None;
+    };
+    let span = span_of(file, prog.span());
+    if let Some(m) = &p.model {
+        errors.push(
+            Diagnostic::error(
+                Code::E300,
+                span_of(file, m.span()),
+                "[plant] has both `model` and `program`: a plant is a built-in model or a PROGRAM in ST",
+            )
+            .with_label(span, "the program"),
+        );
+    }
+    let step_ns = match &p.step {
+        None => crate::st_plant::DEFAULT_STEP_NS,
+        Some(st) => match automat_runtime::timearg::parse_duration(st.get_ref()) {
+            Ok(ns) if ns > 0 => ns,
+            Ok(_) => {
+                errors.push(Diagnostic::error(
+                    Code::E300,
+                    span_of(file, st.span()),
+                    "[plant] step must be longer than 0",
+                ));
+                crate::st_plant::DEFAULT_STEP_NS
+            }
+            Err(e) => {
+                errors.push(Diagnostic::error(
+                    Code::E300,
+                    span_of(file, st.span()),
+                    format!("[plant] step: {e}"),
+                ));
+                crate::st_plant::DEFAULT_STEP_NS
+            }
+        },
+    };
+    Some(crate::st_plant::StPlantSpec {
+        path: dir.join(prog.get_ref()),
+        written: prog.get_ref().clone(),
+        span,
+        step_ns,
+        operators: p
+            .operators
+            .iter()
+            .map(|o| (o.get_ref().clone(), span_of(file, o.span())))
+            .collect(),
+        compiled: None,
     })
 }
 

@@ -7,6 +7,8 @@
 //!   symbolic links.
 //! - [`bind`]: signals → PLC variables, checked at load.
 //! - [`image`]: plant values in and out of the memory image.
+//! - [`st_plant`]: a plant written in ST (`[plant] program = "plant.st"`),
+//!   compiled like the controller and run on the plant's clock (E310–E315).
 //! - [`sim`]: the coupling of the model to the scan, with overrides
 //!   (stuck sensors and actuators, noise) and timed [`sim::Action`]s.
 //! - [`exec`]: a backend wrapped so the runtime's scan loop drives the plant.
@@ -27,6 +29,7 @@ pub mod folder;
 pub mod image;
 pub mod safe;
 pub mod sim;
+pub mod st_plant;
 pub mod steps;
 pub mod tasks;
 

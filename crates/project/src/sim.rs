@@ -78,6 +78,9 @@ pub struct Sim {
     halted: bool,
     /// The actuator values latched by [`Sim::safe_state`], by signal.
     safe: Vec<Option<Value>>,
+    /// The plant time at which the model reported a fault
+    /// ([`Plant::fault`]: a plant written in ST whose program stopped).
+    pub plant_fault_ns: Option<i64>,
 }
 
 impl Sim {
@@ -111,6 +114,7 @@ impl Sim {
             now_ns: 0,
             halted: false,
             safe: vec![None; n],
+            plant_fault_ns: None,
         }
     }
 
@@ -166,6 +170,10 @@ impl Sim {
         while self.model_ns.saturating_add(step) <= t {
             self.plant.step(step, &mut self.rng);
             self.model_ns += step;
+            // Asked only until it happens: a faulted plant stays faulted.
+            if self.plant_fault_ns.is_none() && self.plant.fault().is_some() {
+                self.plant_fault_ns = Some(self.model_ns);
+            }
         }
         while let Some((at, _)) = self.actions.get(self.next_action) {
             if *at > t {

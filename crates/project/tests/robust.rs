@@ -146,6 +146,17 @@ fn case(path: &Path, text: &str, builds: &mut Builds) -> bool {
         }
         Ok(p) => p,
     };
+    let mut project = project;
+    // What `load` adds to `parse`: a plant written in ST is compiled.
+    if let Some(st) = project.plant.as_mut().and_then(|p| p.program.as_mut()) {
+        match automat_project::st_plant::compile(st, &mut automat_base::SourceMap::new()) {
+            Ok(c) => st.compiled = Some(std::sync::Arc::new(c)),
+            Err(diags) => {
+                assert!(!diags.is_empty());
+                return false;
+            }
+        }
+    }
     assert!(project.cycle_time_ns > 0);
     assert!(!project.sources.is_empty());
     let plant = match project.new_plant() {

@@ -935,6 +935,17 @@ pub fn run_on<E: Executor + 'static, W: Write>(
     } else {
         failures.extend(judge.finish(&image, &sim.borrow()));
     }
+    // A plant written in ST whose program faulted froze there: what the
+    // scenario saw after it is no test of the controller.
+    if let Some(why) = sim.borrow().plant().fault() {
+        failures.push(Failure {
+            what: "the plant".into(),
+            line: 0,
+            at_ns: sim.borrow().plant_fault_ns.unwrap_or(end_ns),
+            reason: why,
+            values: String::new(),
+        });
+    }
     for (at, e) in &sim.borrow().errors {
         failures.push(Failure {
             what: "a plant command".into(),

@@ -45,7 +45,7 @@ impl Section {
             ast::VarKind::Global => Section::Global,
             ast::VarKind::Temp => Section::Temp,
             // Left only where the dialect reported it (E160): checked as VAR.
-            ast::VarKind::Static => Section::Local,
+            ast::VarKind::Static | ast::VarKind::Inst => Section::Local,
         }
     }
 

@@ -125,6 +125,8 @@ fn check(name: &str, what: &str, text: &str) -> Duration {
                     | Code::E005
                     | Code::E006
                     | Code::E007
+                    // VAR_STAT outside the CODESYS dialect.
+                    | Code::E160
             ) || is_il_code(d.code)
                 || is_chart_code(d.code),
             "{name} ({what}): unexpected code {:?}",

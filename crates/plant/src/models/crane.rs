@@ -18,7 +18,10 @@
 //! A motor driven both ways at once does not move (the reversing contactors
 //! are interlocked) and counts a `conflicts` step: a controller bug that
 //! scenarios assert never happens. `cycles` counts returns to rest
-//! position 1 (bottom-left) after having left it.
+//! position 1 (bottom-left) after having left it. `end_stops` counts
+//! collisions with a mechanical end: each time a motor drives the hook
+//! into an end it has reached (past its limit switch, which a right program
+//! obeys within a scan: 1 % of the stroke is 50 ms of travel).
 
 use super::sig;
 use crate::{Dir, Plant, Quantity, Rng, Signal, Value};
@@ -56,6 +59,11 @@ const QUANTITIES: &[Quantity] = &[
         unit: "ms",
         doc: "time a motor was driven both ways at once",
     },
+    Quantity {
+        name: "end_stops",
+        unit: "",
+        doc: "collisions with a mechanical end (a motor driving past its limit switch)",
+    },
 ];
 
 // Signal indices, in the order of SIGNALS.
@@ -76,6 +84,10 @@ pub struct Crane {
     cycles: u64,
     conflict_ns: i64,
     away_from_rest: bool,
+    end_stops: u64,
+    /// Whether each motor (M1S, M1D, M2S, M2J) pushed into its end in the
+    /// last step: a collision counts once, when it starts.
+    pushing: [bool; 4],
     /// Travel in nm.
     x_max: i64,
     y_max: i64,
@@ -101,6 +113,8 @@ impl Crane {
             cycles: 0,
             conflict_ns: 0,
             away_from_rest: false,
+            end_stops: 0,
+            pushing: [false; 4],
             x_max: 10 * NM_PER_M,
             y_max: 5 * NM_PER_M,
             speed_h: 2.0,
@@ -208,6 +222,7 @@ impl Plant for Crane {
             1 => self.y as f64 / NM_PER_M as f64,
             2 => self.cycles as f64,
             3 => self.conflict_ns as f64 / 1e6,
+            4 => self.end_stops as f64,
             _ => 0.0,
         }
     }
@@ -221,6 +236,19 @@ impl Plant for Crane {
         let dy = Crane::travel(m2j, m2s, self.speed_v, dt_ns);
         self.x = self.x.saturating_add(dx).clamp(0, self.x_max);
         self.y = self.y.saturating_add(dy).clamp(0, self.y_max);
+        // A motor driving (alone in its axis) into the end it stands at.
+        let pushing = [
+            m1s && !m1d && self.x == 0,
+            m1d && !m1s && self.x == self.x_max,
+            m2s && !m2j && self.y == self.y_max,
+            m2j && !m2s && self.y == 0,
+        ];
+        for (now, was) in pushing.iter().zip(&self.pushing) {
+            if *now && !*was {
+                self.end_stops += 1;
+            }
+        }
+        self.pushing = pushing;
         let at_rest = self.l1() && self.l3();
         if !at_rest {
             self.away_from_rest = true;
@@ -313,6 +341,36 @@ mod tests {
         run(&mut c, 250);
         assert_eq!(c.quantity(1), 0.0);
         assert_eq!(c.quantity(3), 250.0);
+    }
+
+    #[test]
+    fn driving_into_an_end_counts_one_collision_each_time() {
+        let mut c = Crane::new();
+        c.set(M2S, Value::Bool(true));
+        // 4.95 m: l2 trips; a right program stops here
+        run(&mut c, 4950);
+        assert!(c.get(2).as_bool());
+        assert_eq!(c.quantity(4), 0.0);
+        // 5.0 m after 5 s: the hook hits the top
+        run(&mut c, 49);
+        assert_eq!(c.quantity(4), 0.0);
+        run(&mut c, 1);
+        assert_eq!(c.quantity(1), 5.0);
+        assert_eq!(c.quantity(4), 1.0);
+        // pushing on is the same collision
+        run(&mut c, 500);
+        assert_eq!(c.quantity(4), 1.0);
+        // off and on again: a second one
+        c.set(M2S, Value::Bool(false));
+        run(&mut c, 10);
+        c.set(M2S, Value::Bool(true));
+        run(&mut c, 1);
+        assert_eq!(c.quantity(4), 2.0);
+        // at rest 1 (bottom-left) driving left is a collision too
+        let mut c = Crane::new();
+        c.set(M1S, Value::Bool(true));
+        run(&mut c, 1);
+        assert_eq!(c.quantity(4), 1.0);
     }
 
     #[test]

@@ -19,7 +19,10 @@
 //! Both contactors at once do not move the screw (they are interlocked) and
 //! count as `conflicts`: a controller bug that scenarios assert never
 //! happens. `right_ends`/`left_ends` count arrivals at `L1`/`L0`, so a
-//! scenario can assert how many strokes ran.
+//! scenario can assert how many strokes ran. `end_stops` counts collisions
+//! with the screw's mechanical ends: each time the motor drives the
+//! carriage into the end it has reached (past the switch at 1 %, 50 ms of
+//! travel before it).
 
 use super::pneumatic::{positive, Drive};
 use super::sig;
@@ -69,6 +72,11 @@ const QUANTITIES: &[Quantity] = &[
         unit: "ms",
         doc: "time both contactors were on together",
     },
+    Quantity {
+        name: "end_stops",
+        unit: "",
+        doc: "collisions with a mechanical end (the motor driving past a limit switch)",
+    },
 ];
 
 // Signal indices, in the order of SIGNALS.
@@ -91,6 +99,10 @@ pub struct Oscillating {
     /// Switch states after the previous step, for counting arrivals.
     was_l0: bool,
     was_l1: bool,
+    end_stops: u64,
+    /// The motor pushed into an end in the last step (a collision counts
+    /// once, when it starts).
+    pushing: bool,
 }
 
 impl Default for Oscillating {
@@ -110,6 +122,8 @@ impl Oscillating {
             left_ends: 0,
             was_l0: true,
             was_l1: false,
+            end_stops: 0,
+            pushing: false,
         }
     }
 
@@ -179,12 +193,20 @@ impl Plant for Oscillating {
             1 => self.right_ends as f64,
             2 => self.left_ends as f64,
             3 => self.screw.conflict_ns as f64 / 1e6,
+            4 => self.end_stops as f64,
             _ => 0.0,
         }
     }
 
     fn step(&mut self, dt_ns: i64, _rng: &mut Rng) {
         self.screw.step(dt_ns);
+        let f = self.screw.fraction();
+        let (adv, ret) = (self.screw.advance, self.screw.retract);
+        let pushing = (adv && !ret && f >= 1.0) || (ret && !adv && f <= 0.0);
+        if pushing && !self.pushing {
+            self.end_stops += 1;
+        }
+        self.pushing = pushing;
         let (l0, l1) = (self.screw.retracted(), self.screw.extended());
         if l0 && !self.was_l0 {
             self.left_ends += 1;
@@ -252,6 +274,25 @@ mod tests {
         run(&mut o, 1000);
         assert_eq!(o.quantity(0), 1.0);
         assert_eq!(o.quantity(1), 1.0, "staying at the end is one arrival");
+    }
+
+    #[test]
+    fn driving_into_an_end_counts_one_collision() {
+        let mut o = Oscillating::new();
+        o.set(MD, Value::Bool(true));
+        // L1 at 4950 ms; the end at 5000 ms
+        run(&mut o, 4999);
+        assert!(o.get(L1).as_bool());
+        assert_eq!(o.quantity(4), 0.0);
+        run(&mut o, 1);
+        assert_eq!(o.quantity(4), 1.0);
+        run(&mut o, 300);
+        assert_eq!(o.quantity(4), 1.0, "pushing on is one collision");
+        // the origin: driving left there is a collision too
+        let mut o = Oscillating::new();
+        o.set(MS, Value::Bool(true));
+        run(&mut o, 1);
+        assert_eq!(o.quantity(4), 1.0);
     }
 
     #[test]

@@ -24,6 +24,13 @@
 //! C 1.5 s. A package leaves the platform when A or B is fully advanced with
 //! the platform fully up; it counts as `missorted` if it went the wrong way
 //! (small: 5..40, large: over 40, as the digest's suggested constants).
+//!
+//! What a wrong program does to the machine is counted: `collisions`, each
+//! lowering of the platform (C retracting) while pusher A or B is not
+//! retracted (the pusher stands over the shaft); `jams`, each package
+//! pushed onto belt 2 or 3 while the one before still lies at its head.
+//! Belts 2 and 3 run at the line's speed: a package clears the head after
+//! 1.25 s of running (its 0.2 m and a 0.05 m gap).
 
 use super::pneumatic::{positive, Drive};
 use super::q;
@@ -112,6 +119,16 @@ const QUANTITIES: &[Quantity] = &[
     q("platform", "", "platform height: 0 down .. 1 up"),
     q("conflicts", "ms", "time a cylinder had both coils on"),
     q("removed", "", "packages taken off the scale by hand"),
+    q(
+        "collisions",
+        "",
+        "platform lowered while pusher A or B was not retracted",
+    ),
+    q(
+        "jams",
+        "",
+        "packages pushed onto belt 2 or 3 onto the one before",
+    ),
 ];
 
 // Signal indices, in the order of SIGNALS.
@@ -158,6 +175,12 @@ pub struct Sorter {
     missorted: u64,
     removed: u64,
     speed: f64,
+    collisions: u64,
+    /// Lowering onto a pusher in the last step (counted when it starts).
+    colliding: bool,
+    jams: u64,
+    /// Belt running time still needed to clear the heads of belts 2 and 3.
+    head_busy_ns: [i64; 2],
 }
 
 impl Default for Sorter {
@@ -175,6 +198,8 @@ const WAIT_AT: i64 = 1_800_000_000;
 const ONTO_PLATFORM: i64 = 1_950_000_000;
 const PITCH: i64 = 250_000_000;
 const SETTLE_NS: i64 = 200_000_000;
+/// Running time of belt 2 or 3 until a package has left its head.
+const HEAD_CLEAR_NS: i64 = 1_250_000_000;
 
 impl Sorter {
     /// Empty line, platform down, cylinders retracted.
@@ -191,6 +216,10 @@ impl Sorter {
             missorted: 0,
             removed: 0,
             speed: 0.2,
+            collisions: 0,
+            colliding: false,
+            jams: 0,
+            head_busy_ns: [0; 2],
         }
     }
 
@@ -251,6 +280,13 @@ impl Sorter {
         }
         if let Some(k) = self.platform.take() {
             let to_small = a;
+            let head = usize::from(!to_small);
+            if let Some(busy) = self.head_busy_ns.get_mut(head) {
+                if *busy > 0 {
+                    self.jams += 1;
+                }
+                *busy = HEAD_CLEAR_NS;
+            }
             if to_small {
                 self.small_out += 1;
             } else {
@@ -360,6 +396,8 @@ impl Plant for Sorter {
             6 => self.cyl[2].fraction(),
             7 => self.cyl.iter().map(|c| c.conflict_ns).sum::<i64>() as f64 / 1e6,
             8 => self.removed as f64,
+            9 => self.collisions as f64,
+            10 => self.jams as f64,
             _ => 0.0,
         }
     }
@@ -368,6 +406,18 @@ impl Plant for Sorter {
         let before = self.on_scale().map(|k| k.p);
         for c in &mut self.cyl {
             c.step(dt_ns);
+        }
+        let [a, b, c] = &self.cyl;
+        let lowering = c.retract && !c.advance && c.fraction() > 0.0;
+        let colliding = lowering && !(a.retracted() && b.retracted());
+        if colliding && !self.colliding {
+            self.collisions += 1;
+        }
+        self.colliding = colliding;
+        for (busy, runs) in self.head_busy_ns.iter_mut().zip(&self.belts[2..]) {
+            if *runs {
+                *busy = (*busy - dt_ns).max(0);
+            }
         }
         self.move_line(dt_ns);
         self.push_off();

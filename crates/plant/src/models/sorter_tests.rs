@@ -191,3 +191,78 @@ fn both_coils_conflict_and_bad_commands() {
     assert_eq!(is_small(4.9), None);
     assert_eq!((is_small(40.0), is_small(40.5)), (Some(true), Some(false)));
 }
+
+const A_RETRAS: usize = 14;
+const C_COBORARE_: usize = 18;
+const BANDA_2: usize = 11;
+
+#[test]
+fn lowering_onto_an_extended_pusher_is_one_collision() {
+    let mut s = on_platform(20.0);
+    on(&mut s, C_RIDICARE, true);
+    run(&mut s, 1500);
+    on(&mut s, A_AVANSAT, true);
+    run(&mut s, 800);
+    assert!(b(&s, A1));
+    // the platform goes down with A still out over the shaft
+    on(&mut s, C_RIDICARE, false);
+    on(&mut s, C_COBORARE_, true);
+    run(&mut s, 1);
+    assert_eq!(s.quantity(9), 1.0);
+    run(&mut s, 300);
+    assert_eq!(s.quantity(9), 1.0, "one lowering, one collision");
+    // stopped and lowered again: a second one
+    on(&mut s, C_COBORARE_, false);
+    run(&mut s, 10);
+    on(&mut s, C_COBORARE_, true);
+    run(&mut s, 1);
+    assert_eq!(s.quantity(9), 2.0);
+    // A retracted (0.8 s): lowering the rest of the way is no collision
+    on(&mut s, C_COBORARE_, false);
+    on(&mut s, A_AVANSAT, false);
+    on(&mut s, A_RETRAS, true);
+    run(&mut s, 800);
+    on(&mut s, C_COBORARE_, true);
+    run(&mut s, 1500);
+    assert!(b(&s, C0));
+    assert_eq!(s.quantity(9), 2.0);
+}
+
+/// Pushes one package of `weight` off with A (small) onto belt 2, the
+/// platform back down and A back.
+fn push_small(s: &mut Sorter) {
+    assert_eq!(s.command("package", &[("weight", 20.0)]), Ok(()));
+    on(s, BANDA_0, true);
+    on(s, BANDA_1, true);
+    run(s, 9751);
+    assert!(b(s, FOTO_1));
+    on(s, C_RIDICARE, true);
+    run(s, 1500);
+    on(s, C_RIDICARE, false);
+    on(s, A_AVANSAT, true);
+    run(s, 800);
+    on(s, A_AVANSAT, false);
+    on(s, A_RETRAS, true);
+    run(s, 800);
+    on(s, A_RETRAS, false);
+    on(s, C_COBORARE_, true);
+    run(s, 1500);
+    on(s, C_COBORARE_, false);
+}
+
+#[test]
+fn belt_2_must_run_to_clear_its_head() {
+    // belt 2 stopped: the second small package lands on the first
+    let mut s = Sorter::new();
+    push_small(&mut s);
+    assert_eq!((s.quantity(2), s.quantity(10)), (1.0, 0.0));
+    push_small(&mut s);
+    assert_eq!((s.quantity(2), s.quantity(10)), (2.0, 1.0));
+    assert_eq!(s.quantity(9), 0.0);
+    // belt 2 running: 1.25 s clears the head, every package lands free
+    let mut s = Sorter::new();
+    on(&mut s, BANDA_2, true);
+    push_small(&mut s);
+    push_small(&mut s);
+    assert_eq!((s.quantity(2), s.quantity(10)), (2.0, 0.0));
+}

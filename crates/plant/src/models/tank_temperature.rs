@@ -25,7 +25,9 @@
 //!
 //! The liquid is perfectly mixed (one temperature) and the transducer has no
 //! lag, so an out-of-band temperature is seen in the next scan. Heater and
-//! blower on together count as `conflicts`.
+//! blower on together count as `conflicts`. A tank that runs over (tank 1
+//! above 60 L, tank 2 above 10 L) counts one of `overflows` each time it
+//! starts, and what ran over is `spilled` (L): a right program keeps both 0.
 
 use super::pneumatic::positive;
 use crate::{Dir, Kind, Plant, Quantity, Rng, Signal, Value};
@@ -91,6 +93,16 @@ const QUANTITIES: &[Quantity] = &[
         unit: "ms",
         doc: "time heater and blower were on together",
     },
+    Quantity {
+        name: "overflows",
+        unit: "",
+        doc: "times tank 1 or tank 2 ran over",
+    },
+    Quantity {
+        name: "spilled",
+        unit: "L",
+        doc: "liquid that ran over the rims",
+    },
 ];
 
 // Signal indices, in the order of SIGNALS.
@@ -122,6 +134,10 @@ pub struct TankTemperature {
     /// valva_1, valva_2, rezistenta, racire, pompa as last set.
     out: [bool; 5],
     conflict_ns: i64,
+    overflows: u64,
+    spilled: f64,
+    /// Tank 1, tank 2 running over in the last step.
+    over: [bool; 2],
     // parameters
     ambient: f64,
     inlet_temp: f64,
@@ -153,6 +169,9 @@ impl TankTemperature {
             level2: 0.0,
             out: [false; 5],
             conflict_ns: 0,
+            overflows: 0,
+            spilled: 0.0,
+            over: [false; 2],
             ambient: 20.0,
             inlet_temp: 15.0,
             heater_w: 9000.0,
@@ -262,6 +281,8 @@ impl Plant for TankTemperature {
             1 => self.level1,
             2 => self.level2,
             3 => self.conflict_ns as f64 / 1e6,
+            4 => self.overflows as f64,
+            5 => self.spilled,
             _ => 0.0,
         }
     }
@@ -288,14 +309,26 @@ impl Plant for TankTemperature {
         let mass = self.level1.max(1.0);
         self.temp += power * dt / (HEAT_CAPACITY * mass)
             + inflow * (self.inlet_temp - self.temp) / (mass + inflow);
-        self.level1 = (self.level1 + inflow).min(self.max1);
+        self.level1 += inflow;
+        let spill1 = (self.level1 - self.max1).max(0.0);
+        self.level1 -= spill1;
         // transfer, then the consumer
         if pump && self.valve_2_open() && self.level1 > self.min1 {
             let q = (self.pump_flow * dt).min(self.level1 - self.min1);
             self.level1 -= q;
             self.level2 += q;
         }
-        self.level2 = (self.level2 - self.drain * dt).clamp(0.0, self.max2);
+        self.level2 = (self.level2 - self.drain * dt).max(0.0);
+        let spill2 = (self.level2 - self.max2).max(0.0);
+        self.level2 -= spill2;
+        let over = [spill1 > 0.0, spill2 > 0.0];
+        for (now, was) in over.iter().zip(&self.over) {
+            if *now && !*was {
+                self.overflows += 1;
+            }
+        }
+        self.over = over;
+        self.spilled += spill1 + spill2;
     }
 
     fn command(&mut self, name: &str, args: &[(&str, f64)]) -> Result<(), String> {
@@ -342,6 +375,35 @@ mod tests {
         on(&mut t, VALVA_2, true);
         assert_eq!(t.command("set", &[("drain", 0.0)]), Ok(()));
         t
+    }
+
+    #[test]
+    fn each_overflow_of_either_tank_counts_and_spills() {
+        // valve 1 open: 0.1 L/s into 50 L; the rim at 60 L after 100 s
+        let mut t = closed();
+        on(&mut t, VALVA_1, false);
+        run(&mut t, 99_990);
+        assert_eq!((t.quantity(4), t.quantity(5)), (0.0, 0.0));
+        run(&mut t, 1_010);
+        assert_eq!(t.quantity(1), 60.0);
+        assert_eq!(t.quantity(4), 1.0);
+        assert!((t.quantity(5) - 0.1).abs() < 0.002, "{}", t.quantity(5));
+        // closed and opened again at the rim: a second overflow
+        on(&mut t, VALVA_1, true);
+        run(&mut t, 1_000);
+        on(&mut t, VALVA_1, false);
+        run(&mut t, 10);
+        assert_eq!(t.quantity(4), 2.0);
+        // tank 2: 0.1 L/s pumped, 0.04 L/s drained: 10 L after 166.7 s
+        let mut t = closed();
+        assert_eq!(t.command("set", &[("drain", 0.04)]), Ok(()));
+        on(&mut t, VALVA_2, false);
+        on(&mut t, POMPA, true);
+        run(&mut t, 166_000);
+        assert_eq!(t.quantity(4), 0.0);
+        run(&mut t, 1_000);
+        assert_eq!(t.quantity(2), 10.0);
+        assert_eq!(t.quantity(4), 1.0);
     }
 
     #[test]

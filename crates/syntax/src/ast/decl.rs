@@ -56,6 +56,9 @@ pub enum VarKind {
     /// `VAR_STAT` (CODESYS): one copy for every call and every instance;
     /// the `codesys` dialect turns it into hidden globals before checking.
     Static,
+    /// `VAR_INST` (CODESYS, in a METHOD): kept in the function block's
+    /// instance; the `codesys` dialect moves it there before checking.
+    Inst,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]

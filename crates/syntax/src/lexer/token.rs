@@ -181,6 +181,7 @@ keywords! {
     VarGlobal => b"VAR_GLOBAL",
     VarTemp => b"VAR_TEMP",
     VarStat => b"VAR_STAT",
+    VarInst => b"VAR_INST",
     VarAccess => b"VAR_ACCESS",
     VarConfig => b"VAR_CONFIG",
     EndVar => b"END_VAR",
@@ -318,6 +319,7 @@ impl Kw {
                 | Kw::VarGlobal
                 | Kw::VarTemp
                 | Kw::VarStat
+                | Kw::VarInst
                 | Kw::VarAccess
                 | Kw::VarConfig
         )

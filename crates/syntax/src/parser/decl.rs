@@ -70,18 +70,22 @@ impl Parser<'_> {
             Tok::Kw(Kw::VarExternal) => VarKind::External,
             Tok::Kw(Kw::VarGlobal) => VarKind::Global,
             Tok::Kw(Kw::VarTemp) => VarKind::Temp,
-            Tok::Kw(Kw::VarStat) => {
+            Tok::Kw(k @ (Kw::VarStat | Kw::VarInst)) => {
                 if !self.opts.codesys {
                     self.diags.push(
                         Diagnostic::error(
                             Code::E160,
                             self.tok_span(opener),
-                            "`VAR_STAT` is a CODESYS variable section",
+                            format!("`{}` is a CODESYS variable section", k.name()),
                         )
                         .with_note("check with `--lib codesys` (or `libraries = [\"codesys\"]` in automat.toml) to read CODESYS code"),
                     );
                 }
-                VarKind::Static
+                if k == Kw::VarStat {
+                    VarKind::Static
+                } else {
+                    VarKind::Inst
+                }
             }
             _ => VarKind::Local,
         };
