@@ -65,7 +65,7 @@
         for (const n of ['l1', 'l2', 'l3', 'l4']) toggle(sw[n], 'on', L.b(n));
         for (const n of Object.keys(motors)) toggle(motors[n], 'on', L.b(n));
         text(pos, `x ${fixed(L.q('x'), 2)} m  y ${fixed(L.q('y'), 2)} m`);
-        text(cyc, `cycles ${L.q('cycles')}  conflicts ${L.q('conflicts')} ms`);
+        text(cyc, `cycles ${L.q('cycles')}  conflicts ${L.q('conflicts')} ms  end stops ${L.q('end_stops')}`);
       },
     };
   }

@@ -342,7 +342,8 @@ def plant(base, token):
           and sig["l1"]["value"] is True and sig["l2"]["value"] is False, p["signals"])
     check("quantities with units",
           [(q["name"], q["unit"], q["value"]) for q in p["quantities"]]
-          == [("x", "m", 0.0), ("y", "m", 0.0), ("cycles", "", 0.0), ("conflicts", "ms", 0.0)], p["quantities"])
+          == [("x", "m", 0.0), ("y", "m", 0.0), ("cycles", "", 0.0), ("conflicts", "ms", 0.0), ("end_stops", "", 0.0)],
+          p["quantities"])
     expect("a viewer may not press: 403",
            viewer.post("/api/v1/plant", {"action": "press", "signal": "Pornire"}), 403, "operate the plant")
 
