@@ -314,6 +314,8 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         opts.users = users(loaded.project.as_ref());
         opts.insecure = args.insecure;
         opts.tls = args.tls_cert.clone().zip(args.tls_key.clone());
+        opts.project = loaded.project.as_ref().map(|p| p.name.clone());
+        opts.cycle_time_ns = loaded.cycle_ns;
         // The charts as the compiler reads them, for the HMI.
         opts.charts = match loaded.project.as_ref() {
             Some(p) => {
@@ -445,8 +447,8 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             "ws"
         };
         eprintln!(
-            "automat: PLC API on {}://{}/api/v1/ (WebSocket {ws}://{}/api/v1/watch); Ctrl-C stops",
-            server.scheme, server.addr, server.addr
+            "automat: PLC API on {}://{}/api/v1/ (WebSocket {ws}://{}/api/v1/watch), web HMI on {}://{}/; Ctrl-C stops",
+            server.scheme, server.addr, server.addr, server.scheme, server.addr
         );
     }
     let modbus = match modbus_server {

@@ -176,6 +176,15 @@ fn festo_stl_programs_online_status() {
 }
 
 #[test]
+fn the_plant_is_read_and_operated_through_the_api() {
+    python_ready();
+    let dir = project("plant");
+    let plc = start(&dir, &["--listen", "0", "--virtual-clock"]);
+    client("plant", &plc);
+    interrupt(plc);
+}
+
+#[test]
 fn hostile_clients_do_not_stop_the_scan_in_real_time() {
     python_ready();
     let dir = project("robust");

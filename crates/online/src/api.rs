@@ -51,7 +51,7 @@ fn refuse(status: StatusCode, message: impl Into<String>) -> Refusal {
     }
 }
 
-fn session_error(e: &Error) -> Response {
+pub fn session_error(e: &Error) -> Response {
     let status = match e {
         Error::Path(_) | Error::Value(_) => StatusCode::BAD_REQUEST,
         Error::ReadOnly(_) | Error::Refused(_) => StatusCode::CONFLICT,
@@ -178,6 +178,9 @@ pub async fn status(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery)
         _ => Value::Null,
     };
     axum::Json(json!({
+        "project": app.about["project"],
+        "cycle_time_ns": app.about["cycle_time_ns"],
+        "tasks": app.about["tasks"],
         "state": s.state.name(),
         "plc_time_ns": s.plc_time_ns,
         "scans": s.scans,

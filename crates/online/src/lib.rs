@@ -13,7 +13,9 @@
 pub mod api;
 pub mod auth;
 pub mod charts;
+pub mod hmi;
 pub mod listen;
+pub mod plant;
 pub mod watch;
 
 pub use auth::{hash_password, token_file, Role, User};
@@ -43,6 +45,11 @@ pub struct Options {
     pub max_watchers: usize,
     /// The SFC charts of the program (`GET /api/v1/charts`).
     pub charts: Vec<automat_project::charts::PouChart>,
+    /// The project's name (`[project] name`) for `status`; `None` for
+    /// source files.
+    pub project: Option<String>,
+    /// The base period of cyclic tasks, for `status`.
+    pub cycle_time_ns: i64,
 }
 
 impl Options {
@@ -56,6 +63,8 @@ impl Options {
             max_connections: 128,
             max_watchers: 32,
             charts: Vec::new(),
+            project: None,
+            cycle_time_ns: 10_000_000,
         }
     }
 }
@@ -67,6 +76,9 @@ pub struct App {
     pub watchers: Arc<Semaphore>,
     /// The answer of `GET /api/v1/charts`.
     pub charts: Arc<Option<serde_json::Value>>,
+    /// What `status` says of the program: its project, cycle and tasks
+    /// (fixed while it runs).
+    pub about: Arc<serde_json::Value>,
 }
 
 /// A running server; dropping it stops it.
@@ -91,6 +103,11 @@ impl Drop for Server {
 
 pub fn router(app: App) -> Router {
     Router::new()
+        .route("/", get(hmi::index))
+        .route("/hmi/app.js", get(hmi::app_js))
+        .route("/hmi/charts.js", get(hmi::charts_js))
+        .route("/hmi/mimic.js", get(hmi::mimic_js))
+        .route("/hmi/app.css", get(hmi::app_css))
         .route("/api/v1/status", get(api::status))
         .route("/api/v1/read", get(api::read))
         .route("/api/v1/write", post(api::write))
@@ -102,6 +119,7 @@ pub fn router(app: App) -> Router {
         .route("/api/v1/login", post(api::login))
         .route("/api/v1/watch", get(watch::watch))
         .route("/api/v1/charts", get(charts::charts))
+        .route("/api/v1/plant", get(plant::get).post(plant::post))
         .layer(DefaultBodyLimit::max(MAX_BODY))
         .with_state(app)
 }
@@ -134,7 +152,26 @@ pub fn start(session: Arc<Session>, opts: Options) -> Result<Server, String> {
     let scheme = if tls.is_some() { "https" } else { "http" };
     let tree = session.symbols("").unwrap_or_default();
     let charts = Arc::new(Some(charts::answer(&opts.charts, session.program(), &tree)));
+    let tasks: Vec<serde_json::Value> = session
+        .program()
+        .tasks
+        .iter()
+        .map(|t| {
+            serde_json::json!({
+                "name": t.name,
+                "interval_ns": t.interval_ns,
+                "priority": t.priority,
+                "programs": t.programs.iter().map(|p| p.name.as_str()).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let about = Arc::new(serde_json::json!({
+        "project": opts.project,
+        "cycle_time_ns": opts.cycle_time_ns,
+        "tasks": tasks,
+    }));
     let app = App {
+        about,
         charts,
         session,
         auth: Arc::new(auth::Auth::new(opts.token.clone(), opts.users.clone())),

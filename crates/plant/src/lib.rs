@@ -122,6 +122,14 @@ pub trait Plant {
     fn commands(&self) -> &'static [(&'static str, &'static str)] {
         &[]
     }
+    /// The animated picture a viewer (the web HMI) draws for this model,
+    /// by name (`crane`, `tank-temperature`, `trains`), from the model's
+    /// quantities and signals; `None`: the signal panel alone. A viewer
+    /// that does not know the name shows the panel too, so a model may
+    /// declare a mimic before a viewer draws it.
+    fn mimic(&self) -> Option<&'static str> {
+        None
+    }
 }
 
 /// A small deterministic generator (xorshift64*) for models and noise, so

@@ -232,6 +232,10 @@ impl Core {
                 });
                 Ok(())
             }
+            Command::Plant(call) => match &self.sim {
+                Some(sim) => call(Some(&mut sim.borrow_mut())),
+                None => call(None),
+            },
             Command::Quit => {
                 self.quit = true;
                 Ok(())

@@ -34,6 +34,7 @@
 
 mod core;
 pub mod force;
+pub mod plant;
 pub mod symbols;
 pub mod value;
 
@@ -322,12 +323,16 @@ pub(crate) enum Command {
     Force(force::Force),
     Unforce(Option<value::Stored>),
     Control(Control),
+    /// Runs on the scan thread with the plant (`None` without one).
+    Plant(PlantCall),
     Subscribe {
         period_ns: i64,
         sink: Sink,
     },
     Quit,
 }
+
+pub(crate) type PlantCall = Box<dyn FnOnce(Option<&mut Sim>) -> Result<(), Error> + Send>;
 
 pub(crate) struct Request {
     pub command: Command,
@@ -531,6 +536,28 @@ impl Session {
             resolve(&self.program, path)
                 .is_ok_and(|f| f.offset == place.offset && f.bit == place.bit)
         })
+    }
+
+    /// The plant as the last scan left it (`None`: the run has no plant).
+    pub fn plant(&self) -> Result<Option<plant::View>, Error> {
+        let (tx, rx) = channel();
+        self.send(Command::Plant(Box::new(move |sim| {
+            let _ = tx.send(sim.map(plant::view));
+            Ok(())
+        })))?;
+        rx.recv()
+            .map_err(|_| Error::Gone("the PLC session has ended".into()))
+    }
+
+    /// Applies an operator's action to the plant at the next scan; refused
+    /// when the run has no plant.
+    pub fn plant_op(&self, op: plant::Op) -> Result<(), Error> {
+        self.send(Command::Plant(Box::new(move |sim| match sim {
+            Some(sim) => plant::apply(sim, &op),
+            None => Err(Error::Refused(
+                "this run has no plant (run a project folder with a [plant])".into(),
+            )),
+        })))
     }
 
     /// Run control; returns once it took effect (`step` once the scans ran).

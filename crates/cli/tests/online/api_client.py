@@ -7,6 +7,7 @@ against a real-time run for the robustness checks.
     api_client.py exact URL TOKEN       # the contract, with exact values
     api_client.py robust URL TOKEN      # hostile clients while the PLC runs
     api_client.py tls URL TOKEN CERT    # HTTPS and WSS with the server's certificate
+    api_client.py plant URL TOKEN       # the plant: read it, press Pornire (virtual clock)
     api_client.py fst URL TOKEN         # FST online status (festo-distribution-stl)
 
 Users of the exact run (made by the harness with `automat passwd`):
@@ -327,6 +328,58 @@ def tls(base, token, cert):
         check("plain HTTP is not served", True)
 
 
+def plant(base, token):
+    eng = Api(base, token)
+    viewer = Api(base, requests.post(base + "/api/v1/login", json={"user": "ada", "password": "viewer-pass"},
+                                     timeout=30).json()["token"])
+    p = viewer.get("/api/v1/plant").json()
+    check("the plant: model and mimic", (p["model"], p["mimic"], p["plc_time_ns"]) == ("crane", "crane", 0), p)
+    sig = {s["name"]: s for s in p["signals"]}
+    check("signals with their kind, direction and binding",
+          [(s["name"], s["dir"], s["kind"]) for s in p["signals"]][:2]
+          == [("Pornire", "operator", "BOOL"), ("l1", "sensor", "BOOL")]
+          and sig["M2S"]["dir"] == "actuator" and sig["Pornire"]["bound"] == "%IX1.1"
+          and sig["l1"]["value"] is True and sig["l2"]["value"] is False, p["signals"])
+    check("quantities with units",
+          [(q["name"], q["unit"], q["value"]) for q in p["quantities"]]
+          == [("x", "m", 0.0), ("y", "m", 0.0), ("cycles", "", 0.0), ("conflicts", "ms", 0.0), ("end_stops", "", 0.0)],
+          p["quantities"])
+    expect("a viewer may not press: 403",
+           viewer.post("/api/v1/plant", {"action": "press", "signal": "Pornire"}), 403, "operate the plant")
+
+    eng.step(1)
+    check("before the press", eng.read("Ctrl.Pornire", "Ctrl.GS1.x") == {"Ctrl.Pornire": "FALSE", "Ctrl.GS1.x": "TRUE"})
+    r = eng.post("/api/v1/plant", {"action": "press", "signal": "Pornire", "for_ms": 200})
+    check("press Pornire for 200 ms", r.status_code == 200 and r.json() == {"ok": True}, r.text)
+    eng.step(1)
+    check("the next scan sees it and the chart leaves GS1",
+          eng.read("Ctrl.Pornire", "Ctrl.GS1.x", "Ctrl.GS2.x")
+          == {"Ctrl.Pornire": "TRUE", "Ctrl.GS1.x": "FALSE", "Ctrl.GS2.x": "TRUE"})
+    eng.step(31)
+    v = eng.read("Ctrl.Pornire", "Ctrl.GS2.x", "Ctrl.GS2.t", "Ctrl.M2S")
+    check("released 200 ms later, the crane going up",
+          v == {"Ctrl.Pornire": "FALSE", "Ctrl.GS2.x": "TRUE", "Ctrl.GS2.t": "T#310ms", "Ctrl.M2S": "TRUE"}, v)
+    p = eng.get("/api/v1/plant").json()
+    q = {x["name"]: x["value"] for x in p["quantities"]}
+    check("the hook rose 0.3 m at 1 m/s", (p["plc_time_ns"], q["y"], q["x"]) == (320_000_000, 0.3, 0.0), p)
+
+    r = eng.post("/api/v1/plant", {"action": "set", "signal": "l2", "value": True})
+    eng.step(1)
+    check("set holds a sensor", r.status_code == 200 and eng.read("Ctrl.l2") == {"Ctrl.l2": "TRUE"}
+          and {s["name"]: s for s in eng.get("/api/v1/plant").json()["signals"]}["l2"]["stuck"] is True, r.text)
+    r = eng.post("/api/v1/plant", {"action": "unstick", "signal": "l2"})
+    eng.step(1)
+    check("unstick frees it", r.status_code == 200 and eng.read("Ctrl.l2") == {"Ctrl.l2": "FALSE"}, r.text)
+    expect("press refuses a sensor: 409", eng.post("/api/v1/plant", {"action": "press", "signal": "l1"}), 409,
+           "not a BOOL operator input")
+    expect("an unknown signal: 400", eng.post("/api/v1/plant", {"action": "set", "signal": "Nope", "value": 1}), 400,
+           "its signals: Pornire, l1, l2, l3, l4, M1S, M1D, M2S, M2J")
+    expect("a bad value: 400", eng.post("/api/v1/plant", {"action": "set", "signal": "l1", "value": "x"}), 400,
+           "expected TRUE or FALSE")
+    expect("an unknown action: 400", eng.post("/api/v1/plant", {"action": "kick", "signal": "l1"}), 400,
+           "press, release, set or unstick")
+
+
 def fst(base, token):
     """FST online status (issue: Festo STL, point 7) on the MPS distribution
     station in STL: each program's RUN state and active step, and the
@@ -361,6 +414,8 @@ def main():
     mode, base, token = sys.argv[1:4]
     if mode == "exact":
         exact(base, token)
+    elif mode == "plant":
+        plant(base, token)
     elif mode == "fst":
         fst(base, token)
     elif mode == "tls":

@@ -178,6 +178,9 @@ impl Plant for Crane {
     fn name(&self) -> &'static str {
         "crane"
     }
+    fn mimic(&self) -> Option<&'static str> {
+        Some("crane")
+    }
     fn signals(&self) -> &'static [Signal] {
         SIGNALS
     }

@@ -241,6 +241,9 @@ impl Plant for TankTemperature {
     fn name(&self) -> &'static str {
         "tank-temperature"
     }
+    fn mimic(&self) -> Option<&'static str> {
+        Some("tank-temperature")
+    }
     fn signals(&self) -> &'static [Signal] {
         SIGNALS
     }

@@ -217,6 +217,9 @@ impl Plant for Trains {
     fn name(&self) -> &'static str {
         "trains"
     }
+    fn mimic(&self) -> Option<&'static str> {
+        Some("trains")
+    }
     fn signals(&self) -> &'static [Signal] {
         SIGNALS
     }
