@@ -175,3 +175,19 @@ fn the_hmi_in_headless_chromium() {
         }
     }
 }
+
+/// The chart view's condition evaluator (which marks the transitions that
+/// can fire), run by Node.js on the page's own `charts.js`: crane and PL7
+/// (`%Xi.T`) conditions with exact verdicts.
+#[test]
+fn chart_conditions_are_evaluated_as_the_page_does() {
+    let out = Command::new("node")
+        .arg(root().join("crates/cli/tests/hmi/charts_eval.js"))
+        .arg(root().join("crates/online/hmi/charts.js"))
+        .output()
+        .expect("Node.js (`node`) is needed for this test: apt-get install nodejs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    println!("{text}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "{text}");
+    assert!(text.contains(" passed, 0 failed"), "{text}");
+}

@@ -56,7 +56,9 @@
    * marked enabled, never guessed. */
   function compile(text, resolve) {
     const toks = [];
-    const re = /\s*(>=|<=|<>|[()&<>=]|L?T(?:IME)?#[-0-9A-Za-z_.]+|[0-9][0-9_.]*(?:[eE][-+]?[0-9]+)?|[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*)/y;
+    // `%Xi`, `%Xi.X`, `%Xi.T`: a PL7 step's activity and time (the step
+    // `_Xi` of the chart model).
+    const re = /\s*(>=|<=|<>|[()&<>=]|L?T(?:IME)?#[-0-9A-Za-z_.]+|%X[0-9]+(?:\.[TX])?|[0-9][0-9_.]*(?:[eE][-+]?[0-9]+)?|[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*)/iy;
     let at = 0;
     const src = text.trim();
     while (at < src.length) {
@@ -82,7 +84,8 @@
         return () => v;
       }
       if (['AND', 'OR', 'XOR', 'NOT', 'MOD'].includes(u)) fail();
-      const p = resolve(t);
+      const pl7 = /^%X([0-9]+)(?:\.([TX]))?$/.exec(u);
+      const p = resolve(pl7 ? `_X${pl7[1]}.${pl7[2] || 'X'}` : t);
       if (!p) fail();
       paths.push(p);
       return (values) => num(values.get(p));
