@@ -238,7 +238,7 @@ codes! {
     E160 => "VAR_STAT or VAR_INST not supported here",
         "CODESYS variable sections, read with the CODESYS dialect only (`--lib codesys`): `VAR_STAT` (variables that keep their values between calls, one copy shared by every call and every instance) in a FUNCTION, FUNCTION_BLOCK, PROGRAM or METHOD, not yet among the variables of a function block that has methods; `VAR_INST` (variables of a METHOD kept in its function block's instance) only in a METHOD.";
     E161 => "ACTION not supported here",
-        "CODESYS dialect: a V2.3 text export writes a POU's actions after it (`ACTION name: ... END_ACTION`). automat reads those of a FUNCTION_BLOCK as methods without parameters (`name();` in its body, `inst.name();` outside); an action after a PROGRAM or a FUNCTION, or at the start of a file, is not supported yet.";
+        "CODESYS dialect: a V2.3 text export writes a POU's actions after it (`ACTION name: ... END_ACTION`). automat reads those of a FUNCTION_BLOCK as methods without parameters (`name();` in its body, `inst.name();` outside), and those of a PROGRAM or FUNCTION in place of their calls `name();` in its body; such an action cannot RETURN (it would leave the whole POU: use IF). An action before any POU, or outside the CODESYS dialect, is this error too.";
     E170 => "malformed PLCopen XML",
         "A `.xml` source is not well-formed XML, or its root element is not a PLCopen TC6 `project` (schema 2.01 or 2.0). The message gives the XML parser's reason; the location is where it stopped.";
     E171 => "unsupported PLCopen element",

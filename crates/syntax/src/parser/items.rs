@@ -3,7 +3,9 @@
 
 use super::expr::is_identish;
 use super::Parser;
-use crate::ast::{Body, Item, Lang, Pou, PouKind, TypeBlock, TypeDecl, TypeSpec};
+use crate::ast::{
+    Body, Expr, ExprKind, Item, Lang, Pou, PouKind, Stmt, StmtKind, TypeBlock, TypeDecl, TypeSpec,
+};
 use crate::lexer::{Kw, Tok};
 
 const END_PROGRAM: &[Kw] = &[Kw::EndProgram];
@@ -65,11 +67,13 @@ impl Parser<'_> {
         items
     }
 
-    /// CODESYS V2.3 `ACTION name: statements END_ACTION` after a function
-    /// block (as its text exports write a POU's actions): a method of that
-    /// function block without parameters or result, called `name();` in
-    /// its body and `inst.name();` outside, running on the instance's
-    /// variables. After anything else it is E161.
+    /// CODESYS V2.3 `ACTION name: statements END_ACTION` after a POU (as
+    /// its text exports write a POU's actions). After a function block: a
+    /// method of it without parameters or result, called `name();` in its
+    /// body and `inst.name();` outside, running on the instance's
+    /// variables. After a program or a function: its statements replace
+    /// the calls `name();` of the body (the same variables; an action with
+    /// RETURN is E161). At the start of a file it is E161.
     fn pou_action(&mut self, items: &mut Vec<Item>) {
         let opener = self.bump();
         let name = self.expect_ident("the name of the action");
@@ -133,10 +137,34 @@ impl Parser<'_> {
                     desugared: false,
                 })));
             }
+            // A program's or function's action runs on the same variables
+            // wherever it is called from its own body: the calls
+            // (`Name();`) are replaced by its statements.
+            Some(Item::Pou(p)) => {
+                if has_return(&method.body) {
+                    self.diags.push(automat_base::Diagnostic::error(
+                        automat_base::Code::E161,
+                        self.tok_span(opener),
+                        "an action of a PROGRAM or FUNCTION is run in place of its calls, so it cannot RETURN: leave it with IF instead",
+                    ));
+                }
+                // The actions read before, in this one; this one, in them
+                // and in the body.
+                let mut body = method.body;
+                for (other, its) in &self.pou_actions {
+                    inline_calls(&mut body, *other, its);
+                }
+                for (_, its) in &mut self.pou_actions {
+                    inline_calls(its, method.name.sym, &body);
+                }
+                let crate::ast::Body::St(stmts) = &mut p.body;
+                inline_calls(stmts, method.name.sym, &body);
+                self.pou_actions.push((method.name.sym, body));
+            }
             _ => self.report(automat_base::Diagnostic::error(
                 automat_base::Code::E161,
                 self.tok_span(opener),
-                "a CODESYS ACTION is read after the FUNCTION_BLOCK it belongs to; actions of programs and functions are not supported yet",
+                "a CODESYS ACTION is read after the POU it belongs to",
             )),
         }
     }
@@ -144,6 +172,7 @@ impl Parser<'_> {
     /// FUNCTION, FUNCTION_BLOCK or PROGRAM, at its keyword. `None` when it
     /// has no name (the error was reported and its text consumed).
     fn pou(&mut self) -> Option<Item> {
+        self.pou_actions.clear();
         let opener = self.bump();
         let (kind, end, frame, what) = match opener.tok {
             Tok::Kw(Kw::Function) => (PouKind::Function, Kw::EndFunction, END_FUNCTION, "function"),
@@ -322,5 +351,70 @@ impl Parser<'_> {
             init,
             span,
         })
+    }
+}
+
+/// Whether a statement list contains a RETURN (at any depth).
+fn has_return(stmts: &[Stmt]) -> bool {
+    stmts.iter().any(|s| match &s.kind {
+        StmtKind::Return => true,
+        StmtKind::If {
+            branches,
+            else_body,
+        } => {
+            branches.iter().any(|b| has_return(&b.body))
+                || else_body.as_deref().is_some_and(has_return)
+        }
+        StmtKind::Case {
+            arms, else_body, ..
+        } => {
+            arms.iter().any(|a| has_return(&a.body)) || else_body.as_deref().is_some_and(has_return)
+        }
+        StmtKind::For { body, .. }
+        | StmtKind::While { body, .. }
+        | StmtKind::Repeat { body, .. } => has_return(body),
+        _ => false,
+    })
+}
+
+/// Replaces each statement `name();` (at any depth) by `body`.
+fn inline_calls(stmts: &mut Vec<Stmt>, name: automat_base::Symbol, body: &[Stmt]) {
+    let mut i = 0;
+    while i < stmts.len() {
+        let is_call = matches!(&stmts[i].kind, StmtKind::Expr(Expr { kind: ExprKind::Call { callee, args }, .. })
+            if args.is_empty() && matches!(&callee.kind, ExprKind::Name(id) if id.sym == name));
+        if is_call {
+            stmts.splice(i..=i, body.iter().cloned());
+            i += body.len();
+            continue;
+        }
+        match &mut stmts[i].kind {
+            StmtKind::If {
+                branches,
+                else_body,
+            } => {
+                for b in branches {
+                    inline_calls(&mut b.body, name, body);
+                }
+                if let Some(e) = else_body {
+                    inline_calls(e, name, body);
+                }
+            }
+            StmtKind::Case {
+                arms, else_body, ..
+            } => {
+                for a in arms {
+                    inline_calls(&mut a.body, name, body);
+                }
+                if let Some(e) = else_body {
+                    inline_calls(e, name, body);
+                }
+            }
+            StmtKind::For { body: b, .. }
+            | StmtKind::While { body: b, .. }
+            | StmtKind::Repeat { body: b, .. } => inline_calls(b, name, body),
+            _ => {}
+        }
+        i += 1;
     }
 }

@@ -60,6 +60,9 @@ pub struct Parser<'a> {
     /// Inside a method, property or class: statement lists stop at their
     /// contextual closers (`END_METHOD`, ...).
     oop_depth: u32,
+    /// The CODESYS actions read so far after the current PROGRAM or
+    /// FUNCTION (each with the others it calls already in place).
+    pou_actions: Vec<(automat_base::Symbol, Vec<crate::ast::Stmt>)>,
     /// In an IL body: the variables declared as standard function blocks
     /// with an input `R` (CTU, CTUD, SR) and with an input `S` (RS), so
     /// that `R ctr` and `S ff` set those inputs as the other FB input
@@ -95,6 +98,7 @@ pub fn parse_tokens(
         frames: Vec::new(),
         lex_error_ends: diags.iter().map(|d| d.span.end).collect(),
         oop_depth: 0,
+        pou_actions: Vec::new(),
         il_fb_r: Vec::new(),
         il_fb_s: Vec::new(),
     };
