@@ -235,8 +235,8 @@ codes! {
         "PL7 dialect: step objects `%Xi` are global, so a step number names one step of one chart.";
 
     // ---- PLCopen TC6 XML (automat-plcopen) ----
-    E160 => "VAR_STAT or VAR_INST not supported here",
-        "CODESYS variable sections, read with the CODESYS dialect only (`--lib codesys`): `VAR_STAT` (variables that keep their values between calls, one copy shared by every call and every instance) in a FUNCTION, FUNCTION_BLOCK, PROGRAM or METHOD, not yet among the variables of a function block that has methods; `VAR_INST` (variables of a METHOD kept in its function block's instance) only in a METHOD.";
+    E160 => "VAR_STAT or VAR_INST not allowed here",
+        "CODESYS variable sections, read with the CODESYS dialect only (`--lib codesys`): `VAR_STAT` (variables that keep their values between calls, one copy shared by every call and every instance) in a FUNCTION, FUNCTION_BLOCK, PROGRAM or METHOD; `VAR_INST` (variables of a METHOD kept in its function block's instance) only in a METHOD.";
     E161 => "ACTION not supported here",
         "CODESYS dialect: a V2.3 text export writes a POU's actions after it (`ACTION name: ... END_ACTION`). automat reads those of a FUNCTION_BLOCK as methods without parameters (`name();` in its body, `inst.name();` outside), and those of a PROGRAM or FUNCTION in place of their calls `name();` in its body; such an action cannot RETURN (it would leave the whole POU: use IF). An action before any POU, or outside the CODESYS dialect, is this error too.";
     E170 => "malformed PLCopen XML",

@@ -147,8 +147,9 @@ impl Uses<'_> {
 /// VAR_EXTERNAL here: methods are not POUs until `desugar_oop`).
 /// `VAR_INST` of a METHOD: its variables move into the function block as
 /// hidden variables `__INST_<FB>_<method>_<name>`, kept with the instance.
-/// VAR_STAT among a function block's own variables when it has methods,
-/// and VAR_INST outside a method, are E160.
+/// A function block with methods shares its VAR_STAT globals with its
+/// methods and properties (each gets the VAR_EXTERNAL). VAR_INST outside a
+/// method is E160.
 pub fn static_vars(
     units: &mut [SourceUnit],
     is_user: &dyn Fn(&SourceUnit) -> bool,
@@ -194,20 +195,55 @@ pub fn static_vars(
                 }
                 Item::Class(class) => {
                     let owner = interner.name(class.name.sym).to_string();
-                    for b in class
-                        .var_blocks
-                        .iter()
-                        .filter(|b| matches!(b.kind, VarKind::Static | VarKind::Inst))
-                    {
+                    for b in class.var_blocks.iter().filter(|b| b.kind == VarKind::Inst) {
                         diags.push(automat_base::Diagnostic::error(
                             automat_base::Code::E160,
                             b.span,
-                            if b.kind == VarKind::Inst {
-                                "`VAR_INST` belongs in a METHOD: a function block's own variables are kept in its instance already"
-                            } else {
-                                "`VAR_STAT` among the variables of a function block with methods is not supported yet: declare it in a global variable list"
-                            },
+                            "`VAR_INST` belongs in a METHOD: a function block's own variables are kept in its instance already",
                         ));
+                    }
+                    // The function block's own VAR_STAT: hidden globals, seen
+                    // by its body, its methods and its properties.
+                    let (stat, rest): (Vec<VarBlock>, Vec<VarBlock>) =
+                        std::mem::take(&mut class.var_blocks)
+                            .into_iter()
+                            .partition(|b| b.kind == VarKind::Static);
+                    class.var_blocks = rest;
+                    if !stat.is_empty() {
+                        let mut renames: HashMap<Symbol, Symbol> = HashMap::new();
+                        let mut externals = Vec::new();
+                        for mut block in stat {
+                            for d in &mut block.decls {
+                                for n in &mut d.names {
+                                    let hidden = format!("__STAT_{owner}_{}", interner.name(n.sym));
+                                    let sym = interner.intern(&hidden);
+                                    renames.insert(n.sym, sym);
+                                    n.sym = sym;
+                                }
+                            }
+                            let mut ext = block.clone();
+                            ext.kind = VarKind::External;
+                            for d in &mut ext.decls {
+                                d.init = None;
+                                d.location = None;
+                            }
+                            externals.push(ext);
+                            block.kind = VarKind::Global;
+                            globals.push(block);
+                        }
+                        let rename = &mut Rename { renames: &renames };
+                        walk::stmts(&mut class.body, rename);
+                        class.var_blocks.extend(externals.iter().cloned());
+                        for m in &mut class.methods {
+                            walk::stmts(&mut m.body, rename);
+                            m.var_blocks.extend(externals.iter().cloned());
+                        }
+                        for p in &mut class.properties {
+                            for acc in [&mut p.get, &mut p.set].into_iter().flatten() {
+                                walk::stmts(&mut acc.body, rename);
+                                acc.var_blocks.extend(externals.iter().cloned());
+                            }
+                        }
                     }
                     let mut moved = Vec::new();
                     for m in &mut class.methods {
