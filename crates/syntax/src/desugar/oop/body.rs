@@ -541,6 +541,16 @@ impl<'a> Oop<'a> {
                         self.itf_id(rhs, lhs);
                         return;
                     }
+                    // `i1 = i2`: the same instance (or both none).
+                    if let (T::Itf(a), T::Itf(b)) = (&lt, &rt) {
+                        if a == b && is_place(lhs) && is_place(rhs) {
+                            let i = *a;
+                            self.expr(lhs, cx);
+                            self.expr(rhs, cx);
+                            *e = self.itf_equal(i, lhs, rhs, *op == BinaryOp::Ne, e.span);
+                            return;
+                        }
+                    }
                 }
                 self.expr(lhs, cx);
                 self.expr(rhs, cx);
@@ -548,6 +558,59 @@ impl<'a> Oop<'a> {
             ExprKind::Paren(i) => self.expr(i, cx),
             ExprKind::Call { .. } => self.call(e, cx),
             _ => {}
+        }
+    }
+
+    /// `l = r` of two values of interface `i` (`NOT (...)` for `<>`): the
+    /// same class number and the same reference of each implementing class
+    /// (an assignment sets one reference and leaves the others NULL).
+    fn itf_equal(&mut self, i: Symbol, l: &Expr, r: &Expr, negate: bool, span: Span) -> Expr {
+        let member = |b: &Expr, m: Symbol| Expr {
+            kind: ExprKind::Member {
+                base: Box::new(b.clone()),
+                member: Ident { sym: m, span },
+            },
+            span,
+        };
+        let bin = |op: BinaryOp, a: Expr, b: Expr| Expr {
+            kind: ExprKind::Binary {
+                op,
+                lhs: Box::new(a),
+                rhs: Box::new(b),
+            },
+            span,
+        };
+        let mut fields = vec![self.sym("__id")];
+        for c in self.implementors(i) {
+            let f = format!("__r{}", self.ids.get(&c).copied().unwrap_or(0));
+            fields.push(self.sym(&f));
+        }
+        let mut all: Option<Expr> = None;
+        for f in fields {
+            let eq = bin(BinaryOp::Eq, member(l, f), member(r, f));
+            all = Some(match all {
+                None => eq,
+                Some(acc) => bin(BinaryOp::And, acc, eq),
+            });
+        }
+        let all = all.unwrap_or(Expr {
+            kind: ExprKind::Error,
+            span,
+        });
+        let all = Expr {
+            kind: ExprKind::Paren(Box::new(all)),
+            span,
+        };
+        if negate {
+            Expr {
+                kind: ExprKind::Unary {
+                    op: crate::ast::UnaryOp::Not,
+                    operand: Box::new(all),
+                },
+                span,
+            }
+        } else {
+            all
         }
     }
 
@@ -858,5 +921,21 @@ impl<'a> Oop<'a> {
                 }
             }
         }
+    }
+}
+
+/// A variable, a member or an element (evaluated twice without effect).
+fn is_place(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Name(_) => true,
+        ExprKind::Paren(i) => is_place(i),
+        ExprKind::Member { base, .. } => is_place(base),
+        ExprKind::Index { base, indices } => {
+            is_place(base)
+                && indices
+                    .iter()
+                    .all(|i| is_place(i) || matches!(i.kind, ExprKind::Literal(_)))
+        }
+        _ => false,
     }
 }
