@@ -26,7 +26,7 @@ use automat_online::{Options, Role, User};
 use automat_project::{bind, Sim};
 use automat_runtime::ScanObserver;
 use automat_runtime::{ClockMode, SafeState};
-use automat_session::{Config, Parts, RetainFile, Session};
+use automat_session::{Config, Parts, Session};
 use std::cell::RefCell;
 use std::io::IsTerminal;
 use std::path::Path;
@@ -362,10 +362,7 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
         monotonic: Box::new(ScaledClock::new(args.speed)),
         running: !virtual_clock,
         stop: Arc::clone(&stop),
-        retain: retain.as_ref().map(|r| RetainFile {
-            path: r.path.clone(),
-            every_ns: r.every_ns,
-        }),
+        retain: retain.as_ref().map(RetainCfg::file),
         safe: Some(loaded.safe.clone()),
         realtime: realtime.clone(),
         // Only a client of the server can restart a faulted PLC.

@@ -13,7 +13,7 @@ use automat_runtime::trace::{Column, Trace};
 use automat_runtime::{
     resolve, timearg, value, ClockMode, Limit, Place, SafeState, ScanObserver, SystemClock,
 };
-use automat_session::{Config, End, Final, Parts, RetainFile, Watching};
+use automat_session::{Config, End, Final, Parts, Watching};
 use clap::Args;
 use std::cell::RefCell;
 use std::fs::File;
@@ -385,21 +385,14 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
     if limit == Limit::Unbounded {
         stop_on_signals(&stop);
     }
-    // The same session as a served PLC, run here to its limit.
-    let config = Config {
-        cycle_time_ns: cycle_time,
+    let config = batch_config(
+        cycle_time,
         clock,
-        monotonic: Box::new(SystemClock::new()),
-        running: true,
+        Box::new(SystemClock::new()),
         stop,
-        retain: retain.as_ref().map(|r| RetainFile {
-            path: r.path.clone(),
-            every_ns: r.every_ns,
-        }),
-        safe: Some(safe.clone()),
-        realtime: None,
-        wait_after_fault: false,
-    };
+        retain.as_ref(),
+        &safe,
+    );
     let parts = Parts {
         exec: Box::new(engine),
         sim: None,
@@ -411,6 +404,31 @@ fn run_inner(args: &RunArgs) -> Result<Outcome, Outcome> {
     let end = automat_session::run_here(Arc::new(program), config, parts, limit);
     let trace = trace.and_then(|t| Rc::try_unwrap(t).ok().map(RefCell::into_inner));
     finish(args, end, trace, &prints, retain.as_ref(), &safe)
+}
+
+/// The session of a run to a limit (`--cycles`, `--duration`, a
+/// scenario): the same as a served PLC (forces, RETAIN keeping, the safe
+/// state), run on the calling thread, which entered any real-time mode
+/// itself.
+pub(crate) fn batch_config(
+    cycle_time_ns: i64,
+    clock: ClockMode,
+    monotonic: Box<dyn automat_runtime::Monotonic + Send>,
+    stop: Arc<AtomicBool>,
+    retain: Option<&RetainCfg>,
+    safe: &SafeState,
+) -> Config {
+    Config {
+        cycle_time_ns,
+        clock,
+        monotonic,
+        running: true,
+        stop,
+        retain: retain.map(RetainCfg::file),
+        safe: Some(safe.clone()),
+        realtime: None,
+        wait_after_fault: false,
+    }
 }
 
 /// After a batch run: RETAIN saves reported, trace flushed, values

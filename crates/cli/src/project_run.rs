@@ -22,7 +22,7 @@ use automat_runtime::{ClockMode, Executor, Limit, ScanObserver};
 use automat_scenario::ast::Name;
 use automat_scenario::check::{Ref, Scope};
 use automat_scenario::{Judge, NoPlant, Prepared};
-use automat_session::{Config, End, Parts, RetainFile, Watching};
+use automat_session::{End, Parts, Watching};
 use std::cell::RefCell;
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -372,22 +372,14 @@ fn run_loaded(args: &RunArgs, loaded: Loaded, from_project: bool) -> Result<Outc
     }
     let observer = Rc::new(RefCell::new(observer));
     let cycle_time_ns = args.cycle_time.unwrap_or(project.cycle_time_ns);
-    // The same session as a served PLC (forces, RETAIN keeping, safe
-    // state), run here to its limit.
-    let config = Config {
+    let config = crate::cmd_run::batch_config(
         cycle_time_ns,
         clock,
-        monotonic: Box::new(ScaledClock::new(args.speed)),
-        running: true,
-        stop: Arc::clone(&stop),
-        retain: retain.as_ref().map(|r| RetainFile {
-            path: r.path.clone(),
-            every_ns: r.every_ns,
-        }),
-        safe: Some(safe.clone()),
-        realtime: None,
-        wait_after_fault: false,
-    };
+        Box::new(ScaledClock::new(args.speed)),
+        Arc::clone(&stop),
+        retain.as_ref(),
+        &safe,
+    );
     let parts = Parts {
         exec: Box::new(engine),
         sim: Some(Rc::clone(&sim)),

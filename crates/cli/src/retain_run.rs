@@ -44,6 +44,16 @@ impl RetainCfg {
     }
 }
 
+impl RetainCfg {
+    /// The file as the session keeps it.
+    pub(crate) fn file(&self) -> automat_session::RetainFile {
+        automat_session::RetainFile {
+            path: self.path.clone(),
+            every_ns: self.every_ns,
+        }
+    }
+}
+
 /// Before the first scan: the path is checked (an error, exit 2, unless
 /// optional), then the file loaded into the image unless `--cold`.
 pub(crate) fn start<E: Executor>(

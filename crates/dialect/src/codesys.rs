@@ -179,14 +179,12 @@ pub fn static_vars(
                     let owner = interner.name(pou.name.sym).to_string();
                     let mut renames: HashMap<Symbol, Symbol> = HashMap::new();
                     for mut block in stat {
-                        for d in &mut block.decls {
-                            for n in &mut d.names {
-                                let hidden = format!("__STAT_{owner}_{}", interner.name(n.sym));
-                                let sym = interner.intern(&hidden);
-                                renames.insert(n.sym, sym);
-                                n.sym = sym;
-                            }
-                        }
+                        hide(
+                            &mut block,
+                            &format!("__STAT_{owner}"),
+                            interner,
+                            &mut renames,
+                        );
                         block.kind = VarKind::Global;
                         globals.push(block);
                     }
@@ -213,21 +211,13 @@ pub fn static_vars(
                         let mut renames: HashMap<Symbol, Symbol> = HashMap::new();
                         let mut externals = Vec::new();
                         for mut block in stat {
-                            for d in &mut block.decls {
-                                for n in &mut d.names {
-                                    let hidden = format!("__STAT_{owner}_{}", interner.name(n.sym));
-                                    let sym = interner.intern(&hidden);
-                                    renames.insert(n.sym, sym);
-                                    n.sym = sym;
-                                }
-                            }
-                            let mut ext = block.clone();
-                            ext.kind = VarKind::External;
-                            for d in &mut ext.decls {
-                                d.init = None;
-                                d.location = None;
-                            }
-                            externals.push(ext);
+                            hide(
+                                &mut block,
+                                &format!("__STAT_{owner}"),
+                                interner,
+                                &mut renames,
+                            );
+                            externals.push(external_of(&block));
                             block.kind = VarKind::Global;
                             globals.push(block);
                         }
@@ -263,27 +253,15 @@ pub fn static_vars(
                             } else {
                                 "__INST"
                             };
-                            let mut externals = block.clone();
-                            for d in &mut block.decls {
-                                for n in &mut d.names {
-                                    let hidden = format!(
-                                        "{prefix}_{owner}_{method}_{}",
-                                        interner.name(n.sym)
-                                    );
-                                    let sym = interner.intern(&hidden);
-                                    renames.insert(n.sym, sym);
-                                    n.sym = sym;
-                                }
-                            }
+                            hide(
+                                &mut block,
+                                &format!("{prefix}_{owner}_{method}"),
+                                interner,
+                                &mut renames,
+                            );
                             if block.kind == VarKind::Static {
                                 // A hidden global, and the method's VAR_EXTERNAL of it.
-                                externals.decls = block.decls.clone();
-                                for d in &mut externals.decls {
-                                    d.init = None;
-                                    d.location = None;
-                                }
-                                externals.kind = VarKind::External;
-                                m.var_blocks.push(externals);
+                                m.var_blocks.push(external_of(&block));
                                 block.kind = VarKind::Global;
                                 globals.push(block);
                             } else {
@@ -301,6 +279,35 @@ pub fn static_vars(
         }
         unit.items.extend(globals.into_iter().map(Item::Globals));
     }
+}
+
+/// Gives each variable of `block` the hidden name `<prefix>_<name>`,
+/// noting the rename.
+fn hide(
+    block: &mut VarBlock,
+    prefix: &str,
+    interner: &mut automat_base::Interner,
+    renames: &mut HashMap<Symbol, Symbol>,
+) {
+    for d in &mut block.decls {
+        for n in &mut d.names {
+            let hidden = format!("{prefix}_{}", interner.name(n.sym));
+            let sym = interner.intern(&hidden);
+            renames.insert(n.sym, sym);
+            n.sym = sym;
+        }
+    }
+}
+
+/// The VAR_EXTERNAL that makes the globals of `block` visible in a POU.
+fn external_of(block: &VarBlock) -> VarBlock {
+    let mut ext = block.clone();
+    ext.kind = VarKind::External;
+    for d in &mut ext.decls {
+        d.init = None;
+        d.location = None;
+    }
+    ext
 }
 
 /// Renames the uses of VAR_STAT variables to their hidden globals.

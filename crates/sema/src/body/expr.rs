@@ -648,22 +648,9 @@ impl<'m> Checker<'m> {
             return Typed::of(elem);
         }
         for (ix, dim) in indices.iter().zip(dims) {
-            let t = self.expr(ix, None);
-            let is_int = match t.ty {
-                Ty::Error => continue,
-                Ty::AnyInt => true,
-                Ty::Of(id) => self.model.types.elem(id).is_some_and(|e| e.is_int()),
-                _ => false,
-            };
-            if !is_int {
-                self.err(Code::E030, ix.span, |c| {
-                    format!(
-                        "an array index must be an integer, found {}",
-                        c.tyname(t.ty)
-                    )
-                });
+            let Some(t) = self.integer_index(ix, "an array") else {
                 continue;
-            }
+            };
             if let (Some(v), Dim::Range(lo, hi)) = (t.value.as_ref().and_then(Value::as_int), dim) {
                 let (lo, hi) = (*lo, *hi);
                 if v < lo as i128 || v > hi as i128 {
@@ -679,24 +666,30 @@ impl<'m> Checker<'m> {
         Typed::of(elem)
     }
 
-    /// CODESYS `s[i]`: the character code at position `i` (from 0) of a
-    /// STRING (BYTE) or WSTRING (WORD) of capacity `len`.
-    fn string_index(&mut self, base: &Expr, ix: &Expr, wide: bool, len: u32) -> Typed {
+    /// An index expression checked to be an integer (E030 naming `what`
+    /// otherwise); `None` when it is not one (or already in error).
+    fn integer_index(&mut self, ix: &Expr, what: &str) -> Option<Typed> {
         let t = self.expr(ix, None);
         let is_int = match t.ty {
-            Ty::Error => true,
+            Ty::Error => return None,
             Ty::AnyInt => true,
             Ty::Of(id) => self.model.types.elem(id).is_some_and(|e| e.is_int()),
             _ => false,
         };
         if !is_int {
             self.err(Code::E030, ix.span, |c| {
-                format!(
-                    "a string index must be an integer, found {}",
-                    c.tyname(t.ty)
-                )
+                format!("{what} index must be an integer, found {}", c.tyname(t.ty))
             });
-        } else if let Some(v) = t.value.as_ref().and_then(Value::as_int) {
+            return None;
+        }
+        Some(t)
+    }
+
+    /// CODESYS `s[i]`: the character code at position `i` (from 0) of a
+    /// STRING (BYTE) or WSTRING (WORD) of capacity `len`.
+    fn string_index(&mut self, base: &Expr, ix: &Expr, wide: bool, len: u32) -> Typed {
+        let t = self.integer_index(ix, "a string");
+        if let Some(v) = t.and_then(|t| t.value.as_ref().and_then(Value::as_int)) {
             if v < 0 || v >= i128::from(len) {
                 self.err(Code::E035, ix.span, |c| {
                     format!(
