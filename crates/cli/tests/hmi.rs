@@ -8,19 +8,15 @@
 //! `docs/hmi/` with `UPDATE_DOCS=1` (as `tests/docs.rs` regenerates the
 //! diagnostics page).
 
-use std::io::{BufRead, BufReader, Write};
+#[path = "support/common.rs"]
+mod common;
+
+use common::{bin, hash, root};
+use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
-
-fn bin() -> &'static str {
-    env!("CARGO_BIN_EXE_automat")
-}
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 fn browser_ready() {
     let chromium = std::env::var("CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
@@ -42,21 +38,6 @@ fn browser_ready() {
         "python3 with `selenium` and `requests` is needed: \
          python3 -m pip install selenium requests (as .ci/run does)"
     );
-}
-
-fn hash(user: &str, role: &str, password: &str) -> String {
-    let mut child = Command::new(bin())
-        .args(["passwd", user, "--role", role])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .expect("automat passwd");
-    if let Some(mut stdin) = child.stdin.take() {
-        writeln!(stdin, "{password}").expect("password");
-    }
-    let out = child.wait_with_output().expect("automat passwd");
-    assert!(out.status.success());
-    String::from_utf8(out.stdout).expect("utf-8")
 }
 
 fn temp(tag: &str) -> PathBuf {

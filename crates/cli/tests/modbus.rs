@@ -5,7 +5,7 @@
 //! process against `automat plant crane --modbus-server` in another
 //! (`examples/crane-modbus`). pymodbus comes from PyPI (`.ci/run`).
 
-#[path = "modbus/common.rs"]
+#[path = "support/common.rs"]
 mod common;
 
 use automat_fieldbus::client::Conn;

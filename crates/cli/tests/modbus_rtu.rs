@@ -6,7 +6,7 @@
 //! (`tests/modbus/rtu_device.py`). socat is Debian's package, pyserial and
 //! pymodbus come from PyPI (`.ci/run`).
 
-#[path = "modbus/common.rs"]
+#[path = "support/common.rs"]
 mod common;
 
 use common::{bin, pymodbus_ready, scripts, temp, Proc};

@@ -2,19 +2,15 @@
 //! port, driven by a real client (Python `requests` and `websockets`,
 //! installed by `.ci/run`): `tests/online/api_client.py` holds the checks.
 
+#[path = "support/common.rs"]
+mod common;
+
+use common::{bin, hash, root};
 use std::io::{BufRead, BufReader, Write};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
-
-fn bin() -> &'static str {
-    env!("CARGO_BIN_EXE_automat")
-}
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 fn python_ready() {
     let ok = Command::new("python3")
@@ -26,21 +22,6 @@ fn python_ready() {
         "python3 with `requests` and `websockets` is needed: \
          python3 -m pip install requests websockets (as .ci/run does)"
     );
-}
-
-fn hash(user: &str, role: &str, password: &str) -> String {
-    let mut child = Command::new(bin())
-        .args(["passwd", user, "--role", role])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .expect("automat passwd");
-    if let Some(mut stdin) = child.stdin.take() {
-        writeln!(stdin, "{password}").expect("password");
-    }
-    let out = child.wait_with_output().expect("automat passwd");
-    assert!(out.status.success());
-    String::from_utf8(out.stdout).expect("utf-8")
 }
 
 /// The crane example in a temporary folder, with two users.

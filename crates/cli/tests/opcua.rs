@@ -7,13 +7,12 @@
 //! and SignAndEncrypt. The client certificate is made with openssl.
 #![cfg(feature = "opcua")]
 
-#[path = "modbus/common.rs"]
+#[path = "support/common.rs"]
 mod common;
 
-use common::{bin, temp, Proc};
-use std::io::Write;
+use common::{bin, hash, temp, Proc};
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::time::Duration;
 
 const PROGRAM: &str = "
@@ -37,21 +36,6 @@ END_VAR
     t(IN := lamp, PT := wait);
 END_PROGRAM
 ";
-
-fn hash(user: &str, role: &str, password: &str) -> String {
-    let mut child = Command::new(bin())
-        .args(["passwd", user, "--role", role])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .expect("automat passwd");
-    if let Some(mut stdin) = child.stdin.take() {
-        writeln!(stdin, "{password}").expect("password");
-    }
-    let out = child.wait_with_output().expect("automat passwd");
-    assert!(out.status.success());
-    String::from_utf8(out.stdout).expect("utf-8")
-}
 
 fn ready() {
     let asyncua = Command::new("python3")

@@ -1,9 +1,10 @@
-//! What the Modbus end-to-end tests share (`tests/modbus.rs`,
-//! `tests/modbus_rtu.rs`): the binary, temporary folders, pymodbus, and
-//! child processes whose output is watched.
+//! What the end-to-end tests of the servers share (`tests/modbus.rs`,
+//! `tests/modbus_rtu.rs`, `tests/opcua.rs`, `tests/online_api.rs`,
+//! `tests/hmi.rs`): the binary, temporary folders, pymodbus, users made
+//! with `automat passwd`, and child processes whose output is watched.
 #![allow(dead_code)]
 
-use std::io::{BufRead, BufReader};
+use std::io::{BufRead, BufReader, Write};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
@@ -15,6 +16,22 @@ pub fn bin() -> &'static str {
 
 pub fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// A `[users.NAME]` table for automat.toml, made by `automat passwd`.
+pub fn hash(user: &str, role: &str, password: &str) -> String {
+    let mut child = Command::new(bin())
+        .args(["passwd", user, "--role", role])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("automat passwd");
+    if let Some(mut stdin) = child.stdin.take() {
+        writeln!(stdin, "{password}").expect("password");
+    }
+    let out = child.wait_with_output().expect("automat passwd");
+    assert!(out.status.success());
+    String::from_utf8(out.stdout).expect("utf-8")
 }
 
 pub fn scripts() -> PathBuf {
