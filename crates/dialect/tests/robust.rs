@@ -1,6 +1,7 @@
 //! The dialect rewrites never panic: every file of the front-end and
 //! conformance corpora, whole and cut at several places (broken input),
-//! goes through `check_sources` with both dialects on.
+//! goes through `check_sources` with the chart dialects (ISaGRAF and PL7)
+//! on, and again with the CODESYS dialect.
 
 use automat_base::{Interner, SourceMap};
 use automat_dialect::{add_libraries, check_sources, Dialect};
@@ -33,21 +34,25 @@ fn rewrites_survive_every_corpus_file_and_its_prefixes() {
         "corpus not found under {}",
         root.display()
     );
-    let dialects = [Dialect::Isagraf, Dialect::Pl7];
-    for f in &files {
-        let text = std::fs::read_to_string(f).unwrap_or_default();
-        let mut cuts: Vec<usize> = (1..5).map(|k| text.len() * k / 5).collect();
-        cuts.push(text.len());
-        for cut in cuts {
-            let mut cut = cut;
-            while !text.is_char_boundary(cut) {
-                cut -= 1;
+    for dialects in [
+        &[Dialect::Isagraf, Dialect::Pl7][..],
+        &[Dialect::Codesys][..],
+    ] {
+        for f in &files {
+            let text = std::fs::read_to_string(f).unwrap_or_default();
+            let mut cuts: Vec<usize> = (1..5).map(|k| text.len() * k / 5).collect();
+            cuts.push(text.len());
+            for cut in cuts {
+                let mut cut = cut;
+                while !text.is_char_boundary(cut) {
+                    cut -= 1;
+                }
+                let mut map = SourceMap::new();
+                map.add(f.display().to_string(), &text[..cut]);
+                add_libraries(&mut map, dialects);
+                let mut interner = Interner::new();
+                let _ = check_sources(&map, &mut interner, dialects);
             }
-            let mut map = SourceMap::new();
-            map.add(f.display().to_string(), &text[..cut]);
-            add_libraries(&mut map, &dialects);
-            let mut interner = Interner::new();
-            let _ = check_sources(&map, &mut interner, &dialects);
         }
     }
 }

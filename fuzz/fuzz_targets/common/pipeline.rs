@@ -5,14 +5,15 @@
 use automat_base::{render, Interner, SourceMap};
 
 /// Checks `text` as `automat check` does (with the dialect chosen by
-/// `dialect`: 0 none, 1 ISaGRAF, 2 PL7): it must never panic, hang or
+/// `dialect`: 0 none, 1 ISaGRAF, 2 PL7, 3 CODESYS): it must never panic, hang or
 /// overflow the stack; every diagnostic span lies inside its file; the
 /// text and JSON reports render.
 pub fn check(text: &str, dialect: u8) {
-    let names: &[&str] = match dialect % 3 {
+    let names: &[&str] = match dialect % 4 {
         0 => &[],
         1 => &["isagraf"],
-        _ => &["pl7"],
+        2 => &["pl7"],
+        _ => &["codesys"],
     };
     let Ok(dialects) = automat_dialect::parse_names(names) else {
         return;
