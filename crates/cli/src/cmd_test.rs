@@ -54,6 +54,11 @@ pub struct TestArgs {
     /// cores). Results and output order do not depend on N.
     #[arg(long, short = 'j', value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
     jobs: Option<u64>,
+    /// The backend that runs the scenarios and programs: native code (the
+    /// default, as `automat run`; a program the JIT refuses runs on the
+    /// interpreter) or the reference interpreter. Verdicts are the same.
+    #[arg(long, value_enum, default_value_t = crate::engines::EngineKind::Jit)]
+    engine: crate::engines::EngineKind,
 }
 
 enum Item {
@@ -203,6 +208,7 @@ struct Shared {
     /// one, while the others wait for it (other projects build meanwhile).
     projects: Mutex<BTreeMap<PathBuf, Arc<OnceLock<Built>>>>,
     out: Option<PathBuf>,
+    engine: crate::engines::EngineKind,
 }
 
 impl Shared {
@@ -253,7 +259,8 @@ impl Shared {
         report.warnings = built.warnings.clone();
         report.title = format!("{shown} ({})", scn.name);
         let (project, program) = (&built.project, &built.program);
-        match automat_scenario::run::<std::io::Sink>(program, project, &scn, None) {
+        let exec = crate::engines::build_quiet(program.clone(), self.engine);
+        match automat_scenario::run_on::<_, std::io::Sink>(program, exec, project, &scn, None) {
             Err(d) => report.fail(Status::Error, render::render_report(&map, &d)),
             Ok(o) if o.failures.is_empty() => report,
             Ok(o) => {
@@ -302,8 +309,11 @@ impl Shared {
             Ok(b) => String::from_utf8_lossy(&b).into_owned(),
             Err(e) => return report.fail(Status::Error, format!("{shown}: {e}")),
         };
-        // The interpreter runs it, as `automat run` would by default.
-        match conformance::judge(&shown, &text, Backend::Interp) {
+        let backend = match self.engine {
+            crate::engines::EngineKind::Interp => Backend::Interp,
+            crate::engines::EngineKind::Jit => Backend::Jit,
+        };
+        match conformance::judge(&shown, &text, backend) {
             Verdict::Passed => report,
             Verdict::Failed(f) => {
                 // The verdict starts with `NAME:`; the header line names it.
@@ -466,6 +476,7 @@ pub fn run(args: &TestArgs) -> Outcome {
     let shared = Shared {
         projects: Mutex::new(BTreeMap::new()),
         out: args.out.clone(),
+        engine: args.engine,
     };
     let (mut passed, mut failed, mut errors, mut pending) = (0, 0, 0, 0);
     let mut warned = BTreeSet::new();

@@ -49,6 +49,18 @@ pub fn build(program: Program, kind: EngineKind) -> Backend {
     }
 }
 
+/// [`build`] without the note: `automat test` falls back silently (its
+/// verdicts are the same on both backends).
+pub fn build_quiet(program: Program, kind: EngineKind) -> Backend {
+    match kind {
+        EngineKind::Interp => Backend::Interp(Box::new(Engine::new(program))),
+        EngineKind::Jit => match Jit::new(program.clone()) {
+            Ok(j) => Backend::Jit(Box::new(j)),
+            Err(_) => Backend::Interp(Box::new(Engine::new(program))),
+        },
+    }
+}
+
 impl Backend {
     /// `--max-instructions`: the deterministic instruction budget per run
     /// (`None`: none).
