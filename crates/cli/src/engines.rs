@@ -37,26 +37,26 @@ pub fn default_watchdog(program: &mut Program, watchdog: Option<TaskWatchdog>) {
 /// The backend of `kind` for `program`; falls back to the interpreter when
 /// the JIT refuses the program.
 pub fn build(program: Program, kind: EngineKind) -> Backend {
-    match kind {
-        EngineKind::Interp => Backend::Interp(Box::new(Engine::new(program))),
-        EngineKind::Jit => match Jit::new(program.clone()) {
-            Ok(j) => Backend::Jit(Box::new(j)),
-            Err(e) => {
-                eprintln!("note: {e}; running on the interpreter");
-                Backend::Interp(Box::new(Engine::new(program)))
-            }
-        },
-    }
+    build_noting(program, kind, |e| {
+        eprintln!("note: {e}; running on the interpreter");
+    })
 }
 
 /// [`build`] without the note: `automat test` falls back silently (its
 /// verdicts are the same on both backends).
 pub fn build_quiet(program: Program, kind: EngineKind) -> Backend {
+    build_noting(program, kind, |_| {})
+}
+
+fn build_noting(program: Program, kind: EngineKind, note: impl FnOnce(String)) -> Backend {
     match kind {
         EngineKind::Interp => Backend::Interp(Box::new(Engine::new(program))),
         EngineKind::Jit => match Jit::new(program.clone()) {
             Ok(j) => Backend::Jit(Box::new(j)),
-            Err(_) => Backend::Interp(Box::new(Engine::new(program))),
+            Err(e) => {
+                note(e.to_string());
+                Backend::Interp(Box::new(Engine::new(program)))
+            }
         },
     }
 }
