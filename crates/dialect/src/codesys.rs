@@ -161,66 +161,35 @@ pub fn static_vars(
         for item in &mut unit.items {
             match item {
                 Item::Pou(pou) => {
-                    for b in pou.var_blocks.iter().filter(|b| b.kind == VarKind::Inst) {
-                        diags.push(automat_base::Diagnostic::error(
-                            automat_base::Code::E160,
-                            b.span,
-                            "`VAR_INST` belongs in a METHOD of a function block",
-                        ));
-                    }
-                    let (stat, rest): (Vec<VarBlock>, Vec<VarBlock>) =
-                        std::mem::take(&mut pou.var_blocks)
-                            .into_iter()
-                            .partition(|b| b.kind == VarKind::Static);
-                    pou.var_blocks = rest;
+                    misplaced_inst(
+                        &pou.var_blocks,
+                        "`VAR_INST` belongs in a METHOD of a function block",
+                        diags,
+                    );
+                    let owner = interner.name(pou.name.sym).to_string();
+                    let mut renames = HashMap::new();
+                    let stat = take_static(&mut pou.var_blocks, &owner, interner, &mut renames);
                     if stat.is_empty() {
                         continue;
                     }
-                    let owner = interner.name(pou.name.sym).to_string();
-                    let mut renames: HashMap<Symbol, Symbol> = HashMap::new();
-                    for mut block in stat {
-                        hide(
-                            &mut block,
-                            &format!("__STAT_{owner}"),
-                            interner,
-                            &mut renames,
-                        );
-                        block.kind = VarKind::Global;
-                        globals.push(block);
-                    }
+                    globals.extend(stat);
                     let Body::St(stmts) = &mut pou.body;
                     walk::stmts(stmts, &mut Rename { renames: &renames });
                 }
                 Item::Class(class) => {
                     let owner = interner.name(class.name.sym).to_string();
-                    for b in class.var_blocks.iter().filter(|b| b.kind == VarKind::Inst) {
-                        diags.push(automat_base::Diagnostic::error(
-                            automat_base::Code::E160,
-                            b.span,
-                            "`VAR_INST` belongs in a METHOD: a function block's own variables are kept in its instance already",
-                        ));
-                    }
+                    misplaced_inst(
+                        &class.var_blocks,
+                        "`VAR_INST` belongs in a METHOD: a function block's own variables are kept in its instance already",
+                        diags,
+                    );
                     // The function block's own VAR_STAT: hidden globals, seen
                     // by its body, its methods and its properties.
-                    let (stat, rest): (Vec<VarBlock>, Vec<VarBlock>) =
-                        std::mem::take(&mut class.var_blocks)
-                            .into_iter()
-                            .partition(|b| b.kind == VarKind::Static);
-                    class.var_blocks = rest;
+                    let mut renames = HashMap::new();
+                    let stat = take_static(&mut class.var_blocks, &owner, interner, &mut renames);
                     if !stat.is_empty() {
-                        let mut renames: HashMap<Symbol, Symbol> = HashMap::new();
-                        let mut externals = Vec::new();
-                        for mut block in stat {
-                            hide(
-                                &mut block,
-                                &format!("__STAT_{owner}"),
-                                interner,
-                                &mut renames,
-                            );
-                            externals.push(external_of(&block));
-                            block.kind = VarKind::Global;
-                            globals.push(block);
-                        }
+                        let externals: Vec<VarBlock> = stat.iter().map(external_of).collect();
+                        globals.extend(stat);
                         let rename = &mut Rename { renames: &renames };
                         walk::stmts(&mut class.body, rename);
                         class.var_blocks.extend(externals.iter().cloned());
@@ -297,6 +266,36 @@ fn hide(
             n.sym = sym;
         }
     }
+}
+
+/// E160 for each VAR_INST block of `blocks` (`why` says where it belongs).
+fn misplaced_inst(blocks: &[VarBlock], why: &str, diags: &mut Vec<automat_base::Diagnostic>) {
+    for b in blocks.iter().filter(|b| b.kind == VarKind::Inst) {
+        diags.push(automat_base::Diagnostic::error(
+            automat_base::Code::E160,
+            b.span,
+            why,
+        ));
+    }
+}
+
+/// Takes the VAR_STAT blocks out of `blocks`, their variables renamed
+/// `__STAT_<owner>_<name>`: the hidden globals (VAR_GLOBAL blocks) to add.
+fn take_static(
+    blocks: &mut Vec<VarBlock>,
+    owner: &str,
+    interner: &mut automat_base::Interner,
+    renames: &mut HashMap<Symbol, Symbol>,
+) -> Vec<VarBlock> {
+    let (mut stat, rest): (Vec<VarBlock>, Vec<VarBlock>) = std::mem::take(blocks)
+        .into_iter()
+        .partition(|b| b.kind == VarKind::Static);
+    *blocks = rest;
+    for block in &mut stat {
+        hide(block, &format!("__STAT_{owner}"), interner, renames);
+        block.kind = VarKind::Global;
+    }
+    stat
 }
 
 /// The VAR_EXTERNAL that makes the globals of `block` visible in a POU.

@@ -89,6 +89,10 @@ struct Subscription {
 /// The session's side of the scan thread.
 struct Core {
     program: Arc<Program>,
+    /// Whether a handle can read the published snapshot (a `Session`); a
+    /// `run_here` has none, so its scans copy no image for it (the final
+    /// snapshot is still made, for `Final`).
+    clients: bool,
     rx: Receiver<Request>,
     shared: Arc<Shared>,
     forces: Rc<RefCell<ForceTable>>,
@@ -385,7 +389,9 @@ impl Core {
                 // too; a faulted scan's half-done values never are.
                 self.retained_from(image);
             }
-            self.publish(image);
+            if self.clients {
+                self.publish(image);
+            }
             if first && scanned {
                 self.feed();
             }
@@ -520,7 +526,7 @@ pub(crate) fn main(
         }
     }
     match build() {
-        Ok(parts) => run(program, config, parts, Limit::Unbounded, rx, shared, ready),
+        Ok(parts) => run(program, config, parts, Mode::Served, rx, shared, ready),
         Err(e) => failed(&shared, &ready, e),
     }
 }
@@ -540,17 +546,25 @@ pub(crate) fn here(
             return failed(&shared, &ready, e);
         }
     }
-    run(program, config, parts, limit, rx, shared, ready)
+    run(program, config, parts, Mode::Here(limit), rx, shared, ready)
 }
 
-/// The scan loop of a session, on the thread that calls it, until `limit`,
-/// a stop or the end of the session.
+/// How a session runs: served (handles read its snapshots and send it
+/// commands; no limit), or here to a limit with nobody reading.
+#[derive(Clone, Copy)]
+enum Mode {
+    Served,
+    Here(Limit),
+}
+
+/// The scan loop of a session, on the thread that calls it, until its
+/// limit, a stop or the end of the session.
 #[allow(clippy::too_many_arguments)]
 fn run(
     program: Arc<Program>,
     config: Config,
     parts: Parts,
-    limit: Limit,
+    mode: Mode,
     rx: Receiver<Request>,
     shared: Arc<Shared>,
     ready: Sender<Result<(), String>>,
@@ -612,8 +626,13 @@ fn run(
         paused_ns: 0,
         since: None,
     })));
+    let (limit, clients) = match mode {
+        Mode::Served => (Limit::Unbounded, true),
+        Mode::Here(limit) => (limit, false),
+    };
     let mut core = Core {
         program: Arc::clone(&program),
+        clients,
         rx,
         shared,
         forces,
