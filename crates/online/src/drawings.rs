@@ -117,6 +117,9 @@ pub async fn drawings(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuer
     }
     match app.drawings.as_ref() {
         Some(v) => axum::Json(v.clone()).into_response(),
-        None => error(StatusCode::SERVICE_UNAVAILABLE, "the drawings are not known"),
+        None => error(
+            StatusCode::SERVICE_UNAVAILABLE,
+            "the drawings are not known",
+        ),
     }
 }

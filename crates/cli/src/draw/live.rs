@@ -52,7 +52,12 @@ pub fn drawings(map: &automat_base::SourceMap) -> Vec<Drawing> {
                 continue;
             };
             let lang = if s.lang == SheetLang::Ld { "LD" } else { "FBD" };
-            let title = format!("{} ({lang}, {})", s.pou, f.name);
+            // The file's own name: the page is for the operator, not the
+            // folder layout of the machine it runs on.
+            let short = std::path::Path::new(&f.name)
+                .file_name()
+                .map_or(f.name.clone(), |n| n.to_string_lossy().into_owned());
+            let title = format!("{} ({lang}, {short})", s.pou);
             let diagram = draw(&s).finish(&title);
             let mut elements = Vec::new();
             for (b, n) in boxes(&s).into_iter().zip(&s.nodes) {
@@ -72,9 +77,7 @@ pub fn drawings(map: &automat_base::SourceMap) -> Vec<Drawing> {
                     NodeKind::Contact | NodeKind::Coil => {
                         e.power = Some(format!("__ld_n{}", b.id));
                     }
-                    NodeKind::InVar | NodeKind::OutVar | NodeKind::InOutVar
-                        if is_path(&n.text) =>
-                    {
+                    NodeKind::InVar | NodeKind::OutVar | NodeKind::InOutVar if is_path(&n.text) => {
                         e.value = Some(n.text.clone());
                     }
                     NodeKind::Block if is_path(&n.instance) => {

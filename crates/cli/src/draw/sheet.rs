@@ -552,7 +552,12 @@ pub fn boxes(sheet: &Sheet) -> Vec<Boxed> {
                 .n
                 .outs
                 .iter()
-                .map(|o| (o.name.clone(), out_point(p, Some(&o.name), sheet.lang, auto)))
+                .map(|o| {
+                    (
+                        o.name.clone(),
+                        out_point(p, Some(&o.name), sheet.lang, auto),
+                    )
+                })
                 .collect(),
         })
         .collect()

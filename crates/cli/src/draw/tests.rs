@@ -244,7 +244,11 @@ fn live_drawings_of_the_ld_and_fbd_examples() {
     let crane = &ds[0];
     assert!(crane.svg.starts_with("<svg ") && crane.svg.contains("class=\"contact\""));
     // Contact 23 (X7 drives M1S), placed where the drawing puts it.
-    let c23 = crane.elements.iter().find(|e| e.id == 23).expect("contact 23");
+    let c23 = crane
+        .elements
+        .iter()
+        .find(|e| e.id == 23)
+        .expect("contact 23");
     assert_eq!(
         (c23.kind, c23.text.as_str(), c23.x, c23.y, c23.w, c23.h),
         ("contact", "X7", 80.0, 300.0, 21.0, 20.0)
@@ -258,13 +262,24 @@ fn live_drawings_of_the_ld_and_fbd_examples() {
         .count();
     assert_eq!((powered, ld), (64, 64));
     let measure = &ds[2];
-    let filter = measure.elements.iter().find(|e| e.id == 4).expect("block 4");
+    let filter = measure
+        .elements
+        .iter()
+        .find(|e| e.id == 4)
+        .expect("block 4");
     let pins: Vec<(&str, bool, &str, f64, f64)> = filter
         .pins
         .iter()
         .map(|p| (p.name.as_str(), p.output, p.path.as_str(), p.x, p.y))
         .collect();
     assert_eq!(pins, [("XOUT", true, "Filter.XOUT", 377.0, 150.0)]);
-    let raw = measure.elements.iter().find(|e| e.id == 1).expect("variable 1");
-    assert_eq!((raw.kind, raw.value.as_deref()), ("in-variable", Some("T_raw")));
+    let raw = measure
+        .elements
+        .iter()
+        .find(|e| e.id == 1)
+        .expect("variable 1");
+    assert_eq!(
+        (raw.kind, raw.value.as_deref()),
+        ("in-variable", Some("T_raw"))
+    );
 }
