@@ -117,7 +117,14 @@ impl<'a> Emitter<'a> {
             String::new()
         };
         // Files no JSR reaches are still checked.
-        for n in self.p.files.keys().copied().filter(|&n| n != 2).collect::<Vec<_>>() {
+        for n in self
+            .p
+            .files
+            .keys()
+            .copied()
+            .filter(|&n| n != 2)
+            .collect::<Vec<_>>()
+        {
             let _ = self.file(n, 1);
         }
         // A file inlined at several JSRs reports its errors once.
@@ -160,9 +167,10 @@ impl<'a> Emitter<'a> {
 
     fn has(&self, n: u32, names: &[&str]) -> bool {
         self.p.files.get(&n).is_some_and(|f| {
-            f.rungs.iter().flat_map(|r| &r.elems).any(|e| {
-                matches!(e, Elem::Ins(i) if names.contains(&i.mn))
-            })
+            f.rungs
+                .iter()
+                .flat_map(|r| &r.elems)
+                .any(|e| matches!(e, Elem::Ins(i) if names.contains(&i.mn)))
         })
     }
 
@@ -198,8 +206,8 @@ impl<'a> Emitter<'a> {
             return String::new();
         };
         let rungs: &'a [Rung] = &f.rungs;
-        let segmented = self.has(n, &["JMP", "LBL", "RET", "TND"])
-            || self.ends_scan(n, &mut BTreeSet::new());
+        let segmented =
+            self.has(n, &["JMP", "LBL", "RET", "TND"]) || self.ends_scan(n, &mut BTreeSet::new());
         let mut level = Level {
             seg: None,
             base: depth * MAX_BRANCH,
@@ -249,7 +257,10 @@ impl<'a> Emitter<'a> {
             match u {
                 Some(u) if starts && r > 0 => {
                     seg += 1;
-                    let _ = write!(s, "    IF NOT __j{u} THEN __pc{u} := {seg}; END_IF;\n    {seg}:\n{code}");
+                    let _ = write!(
+                        s,
+                        "    IF NOT __j{u} THEN __pc{u} := {seg}; END_IF;\n    {seg}:\n{code}"
+                    );
                 }
                 Some(u) if r > 0 => {
                     let _ = write!(s, "    IF NOT __j{u} THEN\n{code}    END_IF;\n");
@@ -258,7 +269,10 @@ impl<'a> Emitter<'a> {
             }
         }
         if let Some(u) = u {
-            let _ = write!(s, "    IF NOT __j{u} THEN __pc{u} := -1; END_IF;\n    END_CASE;\n    END_WHILE;\n");
+            let _ = write!(
+                s,
+                "    IF NOT __j{u} THEN __pc{u} := -1; END_IF;\n    END_CASE;\n    END_WHILE;\n"
+            );
         }
         s
     }
@@ -281,7 +295,14 @@ impl<'a> Emitter<'a> {
             match e {
                 Elem::Bst(span) => {
                     if depth + 1 >= MAX_BRANCH {
-                        self.err(Code::E235, *span, format!("LAD {n} rung {r}: branches nested deeper than {}", MAX_BRANCH - 1));
+                        self.err(
+                            Code::E235,
+                            *span,
+                            format!(
+                                "LAD {n} rung {r}: branches nested deeper than {}",
+                                MAX_BRANCH - 1
+                            ),
+                        );
                         return String::new();
                     }
                     depth += 1;
@@ -331,7 +352,7 @@ impl<'a> Emitter<'a> {
                 let k = self.rem(a0);
                 let (arr, ix) = (a0.array(), a0.index());
                 format!(
-                    "    __x := __SLC_{}(EN := __rc, BASE := {base}, D := __d, CTL := {arr}[{ix}], PRE := {arr}[{}], ACC := {arr}[{}], REM := __rem[{k}]);\n",
+                    "    __x := __SLC_{}(RUNG := __rc, BASE := {base}, D := __d, CTL := {arr}[{ix}], PRE := {arr}[{}], ACC := {arr}[{}], REM := __rem[{k}]);\n",
                     i.mn,
                     ix + 1,
                     ix + 2
@@ -344,7 +365,7 @@ impl<'a> Emitter<'a> {
                 }
                 let (arr, ix) = (a0.array(), a0.index());
                 format!(
-                    "    __x := __SLC_{}(EN := __rc, CTL := {arr}[{ix}], PRE := {arr}[{}], ACC := {arr}[{}]);\n",
+                    "    __x := __SLC_{}(RUNG := __rc, CTL := {arr}[{ix}], PRE := {arr}[{}], ACC := {arr}[{}]);\n",
                     i.mn,
                     ix + 1,
                     ix + 2
@@ -379,7 +400,11 @@ impl<'a> Emitter<'a> {
                 };
                 let (a, b) = (op(0), op(1));
                 if is_real(&a) || is_real(&b) {
-                    format!("    __rc := __rc AND ({} {sym} {});\n", lreal(&a), lreal(&b))
+                    format!(
+                        "    __rc := __rc AND ({} {sym} {});\n",
+                        lreal(&a),
+                        lreal(&b)
+                    )
                 } else {
                     format!("    __rc := __rc AND ({} {sym} {});\n", dint(&a), dint(&b))
                 }
@@ -492,7 +517,14 @@ impl<'a> Emitter<'a> {
                     return String::new();
                 };
                 if !self.p.files.contains_key(&k) {
-                    self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `{}`: the project has no program file LAD {k}", i.text));
+                    self.err(
+                        Code::E237,
+                        i.span,
+                        format!(
+                            "LAD {n} rung {r}, `{}`: the project has no program file LAD {k}",
+                            i.text
+                        ),
+                    );
                     return String::new();
                 }
                 if self.stack.contains(&k) || k == n {
@@ -500,17 +532,29 @@ impl<'a> Emitter<'a> {
                     return String::new();
                 }
                 if self.stack.len() + 1 >= MAX_CALLS {
-                    self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `{}`: subroutine calls nest deeper than {MAX_CALLS}", i.text));
+                    self.err(
+                        Code::E237,
+                        i.span,
+                        format!(
+                            "LAD {n} rung {r}, `{}`: subroutine calls nest deeper than {MAX_CALLS}",
+                            i.text
+                        ),
+                    );
                     return String::new();
                 }
                 self.stack.push(n);
                 let depth = self.stack.len();
                 let body = self.file(k, depth);
                 self.stack.pop();
-                let mut s = format!("    IF __rc THEN\n    (* JSR {k} *)\n{body}    __rc := TRUE;\n    END_IF;\n");
+                let mut s = format!(
+                    "    IF __rc THEN\n    (* JSR {k} *)\n{body}    __rc := TRUE;\n    END_IF;\n"
+                );
                 if let Some(u) = level.seg {
                     if self.ends_scan(k, &mut BTreeSet::new()) {
-                        let _ = writeln!(s, "    IF __tnd THEN __pc{u} := -1; __j{u} := TRUE; END_IF;");
+                        let _ = writeln!(
+                            s,
+                            "    IF __tnd THEN __pc{u} := -1; __j{u} := TRUE; END_IF;"
+                        );
                     }
                 }
                 s
@@ -523,7 +567,14 @@ impl<'a> Emitter<'a> {
                     return String::new();
                 };
                 let (Some(u), Some(seg)) = (level.seg, level.labels.get(&l)) else {
-                    self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `{}`: no `LBL {l}` in this program file", i.text));
+                    self.err(
+                        Code::E237,
+                        i.span,
+                        format!(
+                            "LAD {n} rung {r}, `{}`: no `LBL {l}` in this program file",
+                            i.text
+                        ),
+                    );
                     return String::new();
                 };
                 gate(format!("__pc{u} := {seg}; __j{u} := TRUE;"))
@@ -535,7 +586,11 @@ impl<'a> Emitter<'a> {
             }
             other => {
                 // Every row of the table has a case above.
-                self.err(Code::E231, i.span, format!("`{other}`: this SLC-500 instruction is not implemented by automat"));
+                self.err(
+                    Code::E231,
+                    i.span,
+                    format!("`{other}`: this SLC-500 instruction is not implemented by automat"),
+                );
                 String::new()
             }
         }
@@ -544,7 +599,14 @@ impl<'a> Emitter<'a> {
     /// Bitwise instructions take integer words only.
     fn ints(&mut self, n: u32, r: usize, i: &Ins, ops: &[Operand]) -> bool {
         if ops.iter().any(is_real) {
-            self.err(Code::E232, i.span, format!("LAD {n} rung {r}, `{}`: {} works on integer words, not floats", i.text, i.mn));
+            self.err(
+                Code::E232,
+                i.span,
+                format!(
+                    "LAD {n} rung {r}, `{}`: {} works on integer words, not floats",
+                    i.text, i.mn
+                ),
+            );
             return false;
         }
         true

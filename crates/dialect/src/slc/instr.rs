@@ -30,18 +30,12 @@ pub enum Kind {
 pub struct Def {
     pub name: &'static str,
     pub operands: &'static [Kind],
-    /// An output instruction (acts on the rung condition, does not change it).
-    pub output: bool,
 }
 
 use Kind::*;
 
-const fn d(name: &'static str, operands: &'static [Kind], output: bool) -> Def {
-    Def {
-        name,
-        operands,
-        output,
-    }
+const fn d(name: &'static str, operands: &'static [Kind], _output: bool) -> Def {
+    Def { name, operands }
 }
 
 pub const TABLE: &[Def] = &[

@@ -56,8 +56,16 @@ impl Layout {
                         *span,
                         format!(
                             "`{}{}:{}` lies beyond data file {}{} (declared with {n} element{})",
-                            if a.file <= 2 { String::new() } else { a.ty.letter().to_string() },
-                            if a.file <= 2 { a.ty.letter().to_string() } else { a.file.to_string() },
+                            if a.file <= 2 {
+                                String::new()
+                            } else {
+                                a.ty.letter().to_string()
+                            },
+                            if a.file <= 2 {
+                                a.ty.letter().to_string()
+                            } else {
+                                a.file.to_string()
+                            },
                             a.elem,
                             a.ty.letter(),
                             a.file,

@@ -91,3 +91,21 @@ fn ladder_to_st(project: &mut parse::Project) -> String {
     s.push_str(&body);
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dump_generated() {
+        let mut map = SourceMap::new();
+        let text = std::env::var("SLC_DUMP").unwrap_or_else(|_| "TON T4:0 0.01 300 0\n".into());
+        map.add("t.slc", text);
+        let (st, diags) = translate(&map);
+        assert!(diags.is_empty(), "{diags:?}");
+        if std::env::var("SLC_DUMP").is_ok() {
+            println!("{}", st.as_deref().unwrap_or(""));
+        }
+        assert!(st.is_some_and(|s| s.contains("__SLC_TON(RUNG := __rc")));
+    }
+}

@@ -8,6 +8,10 @@
 //! addresses, kinds checked against the instruction's table row); an error
 //! is reported once, at the instruction, and the rung is dropped.
 
+// Spans and names of rungs, files, symbols and declarations not read by the
+// ST generation are kept for the ladder drawing (issue 12 point 6).
+#![allow(dead_code)]
+
 use super::instr::{self, Kind};
 use automat_base::slc::{self, Address, FileType, Part};
 use automat_base::{Code, Diagnostic, FileId, Span};
@@ -213,7 +217,11 @@ impl<'a> Reader<'a> {
                     ("SOR", false) => self.open = Some((Vec::new(), t.start)),
                     ("SOR", true) => {
                         let s = self.span(&t);
-                        self.err(Code::E235, s, "`SOR` inside a rung: the rung before has no `EOR`".into());
+                        self.err(
+                            Code::E235,
+                            s,
+                            "`SOR` inside a rung: the rung before has no `EOR`".into(),
+                        );
                     }
                     ("EOR", true) => {
                         if let Some((body, start)) = self.open.take() {
@@ -263,7 +271,11 @@ impl<'a> Reader<'a> {
                     .collect::<Vec<_>>()
                     .join(" ");
                 if self.p.files.contains_key(&n) {
-                    self.err(Code::E237, span, format!("program file LAD {n} is defined twice"));
+                    self.err(
+                        Code::E237,
+                        span,
+                        format!("program file LAD {n} is defined twice"),
+                    );
                 } else {
                     self.p.files.insert(
                         n,
@@ -288,7 +300,11 @@ impl<'a> Reader<'a> {
     fn symbol(&mut self, toks: &[Tok]) {
         let span = Span::new(self.file, toks[0].start, toks.last().map_or(0, |t| t.end));
         let (Some(a), Some(name)) = (toks.get(1), toks.get(2)) else {
-            self.err(Code::E238, span, "a symbol line is `SYM ADDRESS NAME [\"description\"]`".into());
+            self.err(
+                Code::E238,
+                span,
+                "a symbol line is `SYM ADDRESS NAME [\"description\"]`".into(),
+            );
             return;
         };
         let addr = match slc::parse(&a.text) {
@@ -299,14 +315,27 @@ impl<'a> Reader<'a> {
                 return;
             }
         };
-        if !is_name(&name.text) || slc::looks_like(&name.text) || instr::find(&name.up).is_some() || name.up.starts_with("__") {
+        if !is_name(&name.text)
+            || slc::looks_like(&name.text)
+            || instr::find(&name.up).is_some()
+            || name.up.starts_with("__")
+        {
             let s = self.span(name);
             self.err(Code::E238, s, format!("symbol `{}`: a symbol is letters, digits and `_`, not an instruction or an address, and does not start with a digit or `__`", name.text));
             return;
         }
-        if self.p.symbols.iter().any(|s| s.name.eq_ignore_ascii_case(&name.text)) {
+        if self
+            .p
+            .symbols
+            .iter()
+            .any(|s| s.name.eq_ignore_ascii_case(&name.text))
+        {
             let s = self.span(name);
-            self.err(Code::E238, s, format!("symbol `{}` is defined twice", name.text));
+            self.err(
+                Code::E238,
+                s,
+                format!("symbol `{}` is defined twice", name.text),
+            );
             return;
         }
         let desc = toks[3..]
@@ -344,7 +373,11 @@ impl<'a> Reader<'a> {
         };
         match FileType::of_number(num) {
             Some(t) if t != ty => {
-                self.err(Code::E238, span, format!("file {num} is a {} file", t.letter()));
+                self.err(
+                    Code::E238,
+                    span,
+                    format!("file {num} is a {} file", t.letter()),
+                );
                 return;
             }
             None if matches!(ty, FileType::O | FileType::I | FileType::S) => {
@@ -360,7 +393,11 @@ impl<'a> Reader<'a> {
         };
         let Some(elements) = n.up.parse::<u32>().ok().filter(|&e| (1..=max).contains(&e)) else {
             let s = self.span(n);
-            self.err(Code::E238, s, format!("a data file has 1 to {max} elements"));
+            self.err(
+                Code::E238,
+                s,
+                format!("a data file has 1 to {max} elements"),
+            );
             return;
         };
         let mut init = Vec::new();
@@ -373,18 +410,38 @@ impl<'a> Reader<'a> {
             None => {}
             Some("=") => {
                 for t in &toks[4..] {
-                    let v = constant(&t.up).filter(|v| ty == FileType::F || matches!(v, Operand::Int(i) if (-32768..=65535).contains(i)));
+                    let v = constant(&t.up).filter(|v| {
+                        ty == FileType::F
+                            || matches!(v, Operand::Int(i) if (-32768..=65535).contains(i))
+                    });
                     match v {
                         Some(v) => init.push(v),
                         None => {
                             let s = self.span(t);
-                            self.err(Code::E238, s, format!("`{}`: an initial value of a {} file is {}", t.text, ty.letter(), if ty == FileType::F { "a number" } else { "an integer -32768 to 65535" }));
+                            self.err(
+                                Code::E238,
+                                s,
+                                format!(
+                                    "`{}`: an initial value of a {} file is {}",
+                                    t.text,
+                                    ty.letter(),
+                                    if ty == FileType::F {
+                                        "a number"
+                                    } else {
+                                        "an integer -32768 to 65535"
+                                    }
+                                ),
+                            );
                             return;
                         }
                     }
                 }
                 if init.len() as u32 > words {
-                    self.err(Code::E238, span, format!("{} initial values for {words} words", init.len()));
+                    self.err(
+                        Code::E238,
+                        span,
+                        format!("{} initial values for {words} words", init.len()),
+                    );
                     return;
                 }
             }
@@ -394,7 +451,11 @@ impl<'a> Reader<'a> {
             }
         }
         if self.p.data.iter().any(|d| d.ty == ty && d.file == num) {
-            self.err(Code::E238, span, format!("data file {}{num} is declared twice", ty.letter()));
+            self.err(
+                Code::E238,
+                span,
+                format!("data file {}{num} is declared twice", ty.letter()),
+            );
             return;
         }
         self.p.data.push(DataDecl {
@@ -425,7 +486,11 @@ impl<'a> Reader<'a> {
                     continue;
                 }
                 "NXB" | "BND" if depth == 0 => {
-                    self.err(Code::E235, s, format!("`{}` outside a branch: no `BST` opened it", t.up));
+                    self.err(
+                        Code::E235,
+                        s,
+                        format!("`{}` outside a branch: no `BST` opened it", t.up),
+                    );
                     ok = false;
                     break;
                 }
@@ -444,9 +509,18 @@ impl<'a> Reader<'a> {
             }
             let Some(def) = instr::find(&t.up) else {
                 let why = if instr::is_unimplemented(&t.up) {
-                    (Code::E231, format!("`{}`: this SLC-500 instruction is not implemented by automat", t.text))
+                    (
+                        Code::E231,
+                        format!(
+                            "`{}`: this SLC-500 instruction is not implemented by automat",
+                            t.text
+                        ),
+                    )
                 } else {
-                    (Code::E230, format!("`{}` is not an SLC-500 instruction", t.text))
+                    (
+                        Code::E230,
+                        format!("`{}` is not an SLC-500 instruction", t.text),
+                    )
                 };
                 self.err(why.0, s, why.1);
                 ok = false;
@@ -462,9 +536,20 @@ impl<'a> Reader<'a> {
             let ispan = Span::new(self.file, t.start, end);
             // An operand missing: the next word is an instruction or the end.
             let short = ops_toks.len() < kinds.len()
-                || ops_toks.iter().any(|o| instr::find(&o.up).is_some() || matches!(o.up.as_str(), "BST" | "NXB" | "BND"));
+                || ops_toks.iter().any(|o| {
+                    instr::find(&o.up).is_some() || matches!(o.up.as_str(), "BST" | "NXB" | "BND")
+                });
             if short {
-                self.err(Code::E233, ispan, format!("`{text}`: {} takes {} operand(s): {}", def.name, kinds.len(), instr::describe(kinds)));
+                self.err(
+                    Code::E233,
+                    ispan,
+                    format!(
+                        "`{text}`: {} takes {} operand(s): {}",
+                        def.name,
+                        kinds.len(),
+                        instr::describe(kinds)
+                    ),
+                );
                 ok = false;
                 break;
             }
@@ -497,7 +582,11 @@ impl<'a> Reader<'a> {
             i += 1 + kinds.len();
         }
         if ok && depth > 0 {
-            self.err(Code::E235, span, "a branch is not closed: `BST` without its `BND`".into());
+            self.err(
+                Code::E235,
+                span,
+                "a branch is not closed: `BST` without its `BND`".into(),
+            );
             ok = false;
         }
         if !ok {
@@ -522,14 +611,22 @@ impl<'a> Reader<'a> {
     }
 
     fn address(&self, t: &Tok) -> Result<Address, String> {
-        if let Some(s) = self.p.symbols.iter().find(|s| s.name.eq_ignore_ascii_case(&t.text)) {
+        if let Some(s) = self
+            .p
+            .symbols
+            .iter()
+            .find(|s| s.name.eq_ignore_ascii_case(&t.text))
+        {
             return Ok(s.addr);
         }
         if t.up.starts_with('#') || t.up.contains('[') {
             return Err("indexed (`#`) and indirect (`[ ]`) addresses are not implemented".into());
         }
         if is_name(&t.text) && !slc::looks_like(&t.text) {
-            return Err(format!("`{}` is no address and no symbol of the table", t.text));
+            return Err(format!(
+                "`{}` is no address and no symbol of the table",
+                t.text
+            ));
         }
         slc::parse(&t.text)
     }
@@ -551,17 +648,19 @@ impl<'a> Reader<'a> {
                 let max = if kind == Kind::File { 255 } else { 999 };
                 match digits.parse::<u32>() {
                     Ok(n) if n <= max && (kind == Kind::Label || n >= 3) => Ok(Operand::Number(n)),
-                    _ if kind == Kind::File => Err(wrong("no subroutine file number (3 to 255, `U:3` or `3`)")),
+                    _ if kind == Kind::File => {
+                        Err(wrong("no subroutine file number (3 to 255, `U:3` or `3`)"))
+                    }
                     _ => Err(wrong("no label number (0 to 999, `Q2:5` or `5`)")),
                 }
             }
-            Kind::Source if constant(&t.up).is_some() => {
-                match constant(&t.up) {
-                    Some(Operand::Int(v)) if !(-32768..=32767).contains(&v) => Err(wrong("an integer constant outside -32768 to 32767")),
-                    Some(c) => Ok(c),
-                    None => Err(wrong("no constant")),
+            Kind::Source if constant(&t.up).is_some() => match constant(&t.up) {
+                Some(Operand::Int(v)) if !(-32768..=32767).contains(&v) => {
+                    Err(wrong("an integer constant outside -32768 to 32767"))
                 }
-            }
+                Some(c) => Ok(c),
+                None => Err(wrong("no constant")),
+            },
             _ => {
                 let a = self.address(t).map_err(|why| (Code::E236, why))?;
                 let ok = match kind {
@@ -576,10 +675,14 @@ impl<'a> Reader<'a> {
                     Ok(Operand::Addr(a))
                 } else {
                     Err(wrong(match kind {
-                        Kind::Bit => "no bit address: a bit is `B3/1`, `I:1/1`, `T4:0/DN`, `N7:0/3`",
+                        Kind::Bit => {
+                            "no bit address: a bit is `B3/1`, `I:1/1`, `T4:0/DN`, `N7:0/3`"
+                        }
                         Kind::Timer => "no timer: a timer is an element of a T file (`T4:0`)",
                         Kind::Counter => "no counter: a counter is an element of a C file (`C5:0`)",
-                        Kind::Structure => "no timer, counter or control element (`T4:0`, `C5:0`, `R6:0`)",
+                        Kind::Structure => {
+                            "no timer, counter or control element (`T4:0`, `C5:0`, `R6:0`)"
+                        }
                         Kind::Dest => "no word address to write (`N7:0`, `T4:0.PRE`, `F8:1`)",
                         _ => "no word address or constant (`N7:0`, `T4:0.ACC`, `F8:1`, `25`)",
                     }))
