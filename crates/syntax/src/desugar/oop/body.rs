@@ -541,15 +541,21 @@ impl<'a> Oop<'a> {
                         self.itf_id(rhs, lhs);
                         return;
                     }
-                    // `i1 = i2`: the same instance (or both none).
+                    // `i1 = i2`: the same instance (or both none). Two places
+                    // of one interface compare inline; other values (two
+                    // interfaces, a call's result) through `__IE_<A>__<B>`,
+                    // which evaluates each once.
                     if let (T::Itf(a), T::Itf(b)) = (&lt, &rt) {
-                        if a == b && is_place(lhs) && is_place(rhs) {
-                            let i = *a;
-                            self.expr(lhs, cx);
-                            self.expr(rhs, cx);
-                            *e = self.itf_equal(i, lhs, rhs, *op == BinaryOp::Ne, e.span);
-                            return;
-                        }
+                        let (a, b, ne) = (*a, *b, *op == BinaryOp::Ne);
+                        self.expr(lhs, cx);
+                        self.expr(rhs, cx);
+                        *e = if a == b && is_place(lhs) && is_place(rhs) {
+                            let classes = self.implementors(a);
+                            self.itf_equal(&classes, lhs, rhs, ne, e.span)
+                        } else {
+                            self.itf_equal_call(a, b, lhs, rhs, ne, e.span)
+                        };
+                        return;
                     }
                 }
                 self.expr(lhs, cx);
@@ -561,10 +567,19 @@ impl<'a> Oop<'a> {
         }
     }
 
-    /// `l = r` of two values of interface `i` (`NOT (...)` for `<>`): the
-    /// same class number and the same reference of each implementing class
-    /// (an assignment sets one reference and leaves the others NULL).
-    fn itf_equal(&mut self, i: Symbol, l: &Expr, r: &Expr, negate: bool, span: Span) -> Expr {
+    /// `l = r` of two interface values (`NOT (...)` for `<>`): the same
+    /// class number and the same reference of each of `classes`, the
+    /// classes implementing both interfaces (an assignment sets one
+    /// reference and leaves the others NULL; a class implementing only one
+    /// of them has a number the other side never holds).
+    pub(super) fn itf_equal(
+        &mut self,
+        classes: &[Symbol],
+        l: &Expr,
+        r: &Expr,
+        negate: bool,
+        span: Span,
+    ) -> Expr {
         let member = |b: &Expr, m: Symbol| Expr {
             kind: ExprKind::Member {
                 base: Box::new(b.clone()),
@@ -581,8 +596,8 @@ impl<'a> Oop<'a> {
             span,
         };
         let mut fields = vec![self.sym("__id")];
-        for c in self.implementors(i) {
-            let f = format!("__r{}", self.ids.get(&c).copied().unwrap_or(0));
+        for c in classes {
+            let f = format!("__r{}", self.ids.get(c).copied().unwrap_or(0));
             fields.push(self.sym(&f));
         }
         let mut all: Option<Expr> = None;
@@ -611,6 +626,51 @@ impl<'a> Oop<'a> {
             }
         } else {
             all
+        }
+    }
+
+    /// `__IE_<A>__<B>(l, r)` (under NOT for `<>`), the function made for
+    /// the pair once all bodies are rewritten (`itf_equal_fn`).
+    fn itf_equal_call(
+        &mut self,
+        a: Symbol,
+        b: Symbol,
+        l: &Expr,
+        r: &Expr,
+        negate: bool,
+        span: Span,
+    ) -> Expr {
+        if !self.itf_equals.contains(&(a, b)) {
+            self.itf_equals.push((a, b));
+        }
+        let f = format!("__IE_{}__{}", self.name(a), self.name(b));
+        let f = self.sym(&f);
+        let arg = |v: &Expr| Arg {
+            name: None,
+            dir: ArgDir::In,
+            value: Some(v.clone()),
+            span,
+        };
+        let call = Expr {
+            kind: ExprKind::Call {
+                callee: Box::new(Expr {
+                    kind: ExprKind::Name(Ident { sym: f, span }),
+                    span,
+                }),
+                args: vec![arg(l), arg(r)],
+            },
+            span,
+        };
+        if negate {
+            Expr {
+                kind: ExprKind::Unary {
+                    op: crate::ast::UnaryOp::Not,
+                    operand: Box::new(call),
+                },
+                span,
+            }
+        } else {
+            call
         }
     }
 

@@ -549,4 +549,58 @@ impl<'a> Oop<'a> {
         }
         out
     }
+
+    /// `FUNCTION __IE_<A>__<B> : BOOL` over `__a : __ITF_A` and
+    /// `__b : __ITF_B`: whether they designate the same instance (or none).
+    pub(super) fn itf_equal_fn(&mut self, a: Symbol, b: Symbol) -> Item {
+        let span = self.itf(a).map_or(Span::default(), |i| i.name.span);
+        let id = |s: Symbol| Ident { sym: s, span };
+        let name_e = |s: Symbol| Expr {
+            kind: ExprKind::Name(Ident { sym: s, span }),
+            span,
+        };
+        let in_b = self.implementors(b);
+        let common: Vec<Symbol> = self
+            .implementors(a)
+            .into_iter()
+            .filter(|c| in_b.contains(c))
+            .collect();
+        let (asym, bsym) = (self.sym("__a"), self.sym("__b"));
+        let value = self.itf_equal(&common, &name_e(asym), &name_e(bsym), false, span);
+        let fname = format!("__IE_{}__{}", self.name(a), self.name(b));
+        let fsym = self.sym(&fname);
+        let sa = format!("__ITF_{}", self.name(a));
+        let sb = format!("__ITF_{}", self.name(b));
+        let (sa, sb) = (self.sym(&sa), self.sym(&sb));
+        let input = |n: Symbol, t: Symbol| VarDecl {
+            names: vec![id(n)],
+            location: None,
+            ty: TypeSpec::Named(id(t)),
+            edge: None,
+            init: None,
+            span,
+        };
+        let bool_sym = self.sym("BOOL");
+        Item::Pou(Pou {
+            kind: PouKind::Function,
+            name: id(fsym),
+            return_type: Some(TypeSpec::Named(id(bool_sym))),
+            var_blocks: vec![VarBlock {
+                kind: VarKind::Input,
+                constant: false,
+                retain: Default::default(),
+                decls: vec![input(asym, sa), input(bsym, sb)],
+                span,
+            }],
+            body: Body::St(vec![Stmt {
+                kind: StmtKind::Assign {
+                    target: name_e(fsym),
+                    value,
+                },
+                span,
+            }]),
+            lang: Lang::St,
+            span,
+        })
+    }
 }
