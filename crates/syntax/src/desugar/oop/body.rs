@@ -755,7 +755,94 @@ impl<'a> Oop<'a> {
         };
     }
 
+    /// CODESYS `__QUERYINTERFACE(source, dest)`: `__IQ_<A>__<B>(source,
+    /// dest)`, made once all bodies are rewritten (`itf_query_fn`). False
+    /// when `e` is another call.
+    fn query_interface(&mut self, e: &mut Expr, cx: &Ctx) -> bool {
+        let span = e.span;
+        let ExprKind::Call { callee, args } = &mut e.kind else {
+            return false;
+        };
+        if !self.is_word(callee, "__QUERYINTERFACE") {
+            return false;
+        }
+        let positional = args.len() == 2
+            && args
+                .iter()
+                .all(|a| a.name.is_none() && a.dir == ArgDir::In && a.value.is_some());
+        let (src, dst) = match args.as_mut_slice() {
+            [Arg { value: Some(s), .. }, Arg { value: Some(d), .. }] if positional => (s, d),
+            _ => {
+                self.diags.push(Diagnostic::error(
+                    Code::E214,
+                    span,
+                    "`__QUERYINTERFACE` takes two arguments: an interface value and an interface variable",
+                ));
+                e.kind = ExprKind::Error;
+                return true;
+            }
+        };
+        let (st, dt) = (self.type_of(src, cx), self.type_of(dst, cx));
+        let (a, b) = if let (T::Itf(a), T::Itf(b)) = (&st, &dt) {
+            (*a, *b)
+        } else {
+            let (what, at) = match (&st, &dt) {
+                (T::Itf(_), _) => ("its second argument is not an interface", dst.span),
+                (T::Class(_), _) => (
+                    "its first argument is an instance: assign it to an interface variable first",
+                    src.span,
+                ),
+                _ => ("its first argument is not an interface", src.span),
+            };
+            self.diags.push(Diagnostic::error(
+                Code::E214,
+                at,
+                format!("`__QUERYINTERFACE`: {what}"),
+            ));
+            e.kind = ExprKind::Error;
+            return true;
+        };
+        if !is_place(dst) {
+            self.diags.push(Diagnostic::error(
+                Code::E214,
+                dst.span,
+                "`__QUERYINTERFACE`: its second argument must be a variable, member or element it can set",
+            ));
+            e.kind = ExprKind::Error;
+            return true;
+        }
+        self.expr(src, cx);
+        self.expr(dst, cx);
+        if !self.itf_queries.contains(&(a, b)) {
+            self.itf_queries.push((a, b));
+        }
+        let f = format!("__IQ_{}__{}", self.name(a), self.name(b));
+        let f = self.sym(&f);
+        let (sa, sb) = (self.sym("__a"), self.sym("__b"));
+        let named = |n: Symbol, v: &Expr| Arg {
+            name: Some(Ident { sym: n, span }),
+            dir: ArgDir::In,
+            value: Some(v.clone()),
+            span,
+        };
+        let new_args = vec![named(sa, src), named(sb, dst)];
+        *e = Expr {
+            kind: ExprKind::Call {
+                callee: Box::new(Expr {
+                    kind: ExprKind::Name(Ident { sym: f, span }),
+                    span,
+                }),
+                args: new_args,
+            },
+            span,
+        };
+        true
+    }
+
     pub(super) fn call(&mut self, e: &mut Expr, cx: &Ctx) {
+        if self.query_interface(e, cx) {
+            return;
+        }
         let span = e.span;
         let ExprKind::Call { callee, args } = &mut e.kind else {
             return;

@@ -159,6 +159,13 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
             out.push((*u, d.itf_equal_fn(a, b)));
         }
     }
+    let mut k = 0;
+    while let Some(&(a, b)) = d.itf_queries.get(k) {
+        k += 1;
+        if let Some((u, _)) = itfs.get(&a) {
+            out.push((*u, d.itf_query_fn(a, b)));
+        }
+    }
     diags.append(&mut d.diags);
     for (u, item) in out {
         if let Some(unit) = units.get_mut(u) {
@@ -355,6 +362,8 @@ struct Oop<'a> {
     /// Pairs of interfaces compared by `__IE_<A>__<B>` (values that are not
     /// two places of one interface), in the order first met.
     itf_equals: Vec<(Symbol, Symbol)>,
+    /// Pairs (source, destination) of `__QUERYINTERFACE` calls (`__IQ_`).
+    itf_queries: Vec<(Symbol, Symbol)>,
     /// TYPE declarations, every variable of every plain POU, the globals (as written).
     types: HashMap<Symbol, TypeSpec>,
     pou_vars: HashMap<Symbol, HashMap<Symbol, TypeSpec>>,
@@ -392,6 +401,7 @@ impl<'a> Oop<'a> {
             pou_params: HashMap::new(),
             returns: HashMap::new(),
             itf_equals: Vec::new(),
+            itf_queries: Vec::new(),
             types: HashMap::new(),
             pou_vars: HashMap::new(),
             globals: HashMap::new(),
