@@ -891,8 +891,13 @@ impl<'a> Oop<'a> {
                         .cloned()
                         .or_else(|| cx.class.and_then(|c| self.class_var(c, id.sym)))
                     {
-                        // An instance call of an FB-typed variable.
+                        // An instance call of an FB-typed variable (a plain
+                        // function block, or one with methods: its inputs
+                        // with its bases').
                         if let Some(ps) = self.pou_params.get(&fb.sym).cloned() {
+                            self.convert_args(args, &ps, cx);
+                        } else if self.class(fb.sym).is_some() {
+                            let ps = self.class_inputs(fb.sym);
                             self.convert_args(args, &ps, cx);
                         }
                     }

@@ -433,6 +433,24 @@ impl<'a> Oop<'a> {
 
     /// The class and its bases, outermost base last; `None` when the chain
     /// is broken (reported by `check_classes`).
+    /// The VAR_INPUT and VAR_IN_OUT of a class and its bases, as written.
+    fn class_inputs(&self, c: Symbol) -> Vec<(Symbol, TypeSpec)> {
+        let mut v = Vec::new();
+        for k in self.chain(c).iter().rev() {
+            let Some(kc) = self.class(*k) else { continue };
+            for b in &kc.var_blocks {
+                if matches!(b.kind, VarKind::Input | VarKind::InOut) {
+                    for decl in &b.decls {
+                        for n in &decl.names {
+                            v.push((n.sym, decl.ty.clone()));
+                        }
+                    }
+                }
+            }
+        }
+        v
+    }
+
     fn chain(&self, s: Symbol) -> Vec<Symbol> {
         let mut out = vec![s];
         let mut cur = s;
