@@ -763,9 +763,15 @@ impl<'a> Oop<'a> {
         let ExprKind::Call { callee, args } = &mut e.kind else {
             return false;
         };
-        if !self.is_word(callee, "__QUERYINTERFACE") {
+        let pointer = self.is_word(callee, "__QUERYPOINTER");
+        if !pointer && !self.is_word(callee, "__QUERYINTERFACE") {
             return false;
         }
+        let op = if pointer {
+            "__QUERYPOINTER"
+        } else {
+            "__QUERYINTERFACE"
+        };
         let positional = args.len() == 2
             && args
                 .iter()
@@ -773,16 +779,20 @@ impl<'a> Oop<'a> {
         let (src, dst) = match args.as_mut_slice() {
             [Arg { value: Some(s), .. }, Arg { value: Some(d), .. }] if positional => (s, d),
             _ => {
+                let what = if pointer { "a pointer" } else { "an interface" };
                 self.diags.push(Diagnostic::error(
                     Code::E214,
                     span,
-                    "`__QUERYINTERFACE` takes two arguments: an interface value and an interface variable",
+                    format!("`{op}` takes two arguments: an interface value and {what} variable"),
                 ));
                 e.kind = ExprKind::Error;
                 return true;
             }
         };
         let (st, dt) = (self.type_of(src, cx), self.type_of(dst, cx));
+        if pointer {
+            return self.query_pointer(e, st, dt, cx);
+        }
         let (a, b) = if let (T::Itf(a), T::Itf(b)) = (&st, &dt) {
             (*a, *b)
         } else {
@@ -826,6 +836,72 @@ impl<'a> Oop<'a> {
             span,
         };
         let new_args = vec![named(sa, src), named(sb, dst)];
+        *e = Expr {
+            kind: ExprKind::Call {
+                callee: Box::new(Expr {
+                    kind: ExprKind::Name(Ident { sym: f, span }),
+                    span,
+                }),
+                args: new_args,
+            },
+            span,
+        };
+        true
+    }
+
+    /// CODESYS `__QUERYPOINTER(source, dest)`: `__QP_<A>__<k>(source,
+    /// dest)`, one function per call (the pointer's type is the call's).
+    fn query_pointer(&mut self, e: &mut Expr, st: T, dt: T, cx: &Ctx) -> bool {
+        let span = e.span;
+        let ExprKind::Call { args, .. } = &mut e.kind else {
+            return true;
+        };
+        let [Arg {
+            value: Some(src), ..
+        }, Arg {
+            value: Some(dst), ..
+        }] = args.as_mut_slice()
+        else {
+            return true;
+        };
+        let problem = match (&st, &dt) {
+            (T::Itf(_), T::Ref(_)) if is_place(dst) => None,
+            (T::Itf(_), T::Ref(_)) => Some((
+                "its second argument must be a variable, member or element it can set",
+                dst.span,
+            )),
+            (T::Itf(_), _) => Some(("its second argument is not a pointer", dst.span)),
+            (T::Class(_), _) => Some((
+                "its first argument is an instance: take `ADR(instance)` instead",
+                src.span,
+            )),
+            _ => Some(("its first argument is not an interface", src.span)),
+        };
+        if let Some((what, at)) = problem {
+            self.diags.push(Diagnostic::error(
+                Code::E214,
+                at,
+                format!("`__QUERYPOINTER`: {what}"),
+            ));
+            e.kind = ExprKind::Error;
+            return true;
+        }
+        let (T::Itf(a), T::Ref(target)) = (st, dt) else {
+            return true;
+        };
+        self.expr(src, cx);
+        self.expr(dst, cx);
+        let f = format!("__QP_{}__{}", self.name(a), self.itf_pointers.len() + 1);
+        let f = self.sym(&f);
+        self.itf_pointers.push((a, target, f));
+        let (sa, sp) = (self.sym("__a"), self.sym("__p"));
+        let named = |n: Symbol, v: &Expr| Arg {
+            name: Some(Ident { sym: n, span }),
+            dir: ArgDir::In,
+            value: Some(v.clone()),
+            span,
+        };
+        let new_args = vec![named(sa, src), named(sp, dst)];
         *e = Expr {
             kind: ExprKind::Call {
                 callee: Box::new(Expr {

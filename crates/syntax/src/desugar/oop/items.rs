@@ -719,4 +719,109 @@ impl<'a> Oop<'a> {
             span,
         })
     }
+
+    /// `FUNCTION <f> : BOOL` (CODESYS `__QUERYPOINTER`) over
+    /// `__a : __ITF_A` and `VAR_IN_OUT __p : POINTER TO <target>`: `__p` is
+    /// the address of `__a`'s instance (TRUE), or NULL without one (FALSE).
+    /// The instance's reference converts to the pointer as CODESYS
+    /// pointers do (`--lib codesys`).
+    pub(super) fn itf_pointer_fn(&mut self, a: Symbol, target: TypeSpec, fsym: Symbol) -> Item {
+        let span = self.itf(a).map_or(Span::default(), |i| i.name.span);
+        let id = |s: Symbol| Ident { sym: s, span };
+        let name_e = |s: Symbol| Expr {
+            kind: ExprKind::Name(Ident { sym: s, span }),
+            span,
+        };
+        let member_e = |base: Expr, m: Symbol| Expr {
+            kind: ExprKind::Member {
+                base: Box::new(base),
+                member: id(m),
+            },
+            span,
+        };
+        let assign = |t: Expr, v: Expr| Stmt {
+            kind: StmtKind::Assign {
+                target: t,
+                value: v,
+            },
+            span,
+        };
+        let (asym, psym, id_sym) = (self.sym("__a"), self.sym("__p"), self.sym("__id"));
+        let null = self.sym("NULL");
+        let mut body = vec![assign(name_e(psym), name_e(null))];
+        let mut arms = Vec::new();
+        for c in self.implementors(a) {
+            let n = self.ids.get(&c).copied().unwrap_or(0);
+            let field = format!("__r{n}");
+            let field = self.sym(&field);
+            arms.push(CaseArm {
+                labels: vec![CaseLabel::Value(Expr {
+                    kind: ExprKind::Literal(Box::new(Literal {
+                        kind: LitKind::Int(i128::from(n)),
+                        ty: None,
+                    })),
+                    span,
+                })],
+                body: vec![
+                    assign(name_e(psym), member_e(name_e(asym), field)),
+                    assign(
+                        name_e(fsym),
+                        Expr {
+                            kind: ExprKind::Literal(Box::new(Literal {
+                                kind: LitKind::Bool(true),
+                                ty: None,
+                            })),
+                            span,
+                        },
+                    ),
+                ],
+                span,
+            });
+        }
+        if !arms.is_empty() {
+            body.push(Stmt {
+                kind: StmtKind::Case {
+                    selector: member_e(name_e(asym), id_sym),
+                    arms,
+                    else_body: None,
+                },
+                span,
+            });
+        }
+        let sa = format!("__ITF_{}", self.name(a));
+        let sa = self.sym(&sa);
+        let decl = |n: Symbol, ty: TypeSpec| VarDecl {
+            names: vec![id(n)],
+            location: None,
+            ty,
+            edge: None,
+            init: None,
+            span,
+        };
+        let block = |kind: VarKind, d: VarDecl| VarBlock {
+            kind,
+            constant: false,
+            retain: Default::default(),
+            decls: vec![d],
+            span,
+        };
+        let mut pointer = TypeSpec::Ref {
+            target: Box::new(target),
+            span,
+        };
+        self.retype_spec(&mut pointer, VarKind::InOut);
+        let bool_sym = self.sym("BOOL");
+        Item::Pou(Pou {
+            kind: PouKind::Function,
+            name: id(fsym),
+            return_type: Some(TypeSpec::Named(id(bool_sym))),
+            var_blocks: vec![
+                block(VarKind::Input, decl(asym, TypeSpec::Named(id(sa)))),
+                block(VarKind::InOut, decl(psym, pointer)),
+            ],
+            body: Body::St(body),
+            lang: Lang::St,
+            span,
+        })
+    }
 }

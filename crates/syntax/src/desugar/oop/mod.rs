@@ -166,6 +166,11 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
             out.push((*u, d.itf_query_fn(a, b)));
         }
     }
+    for (a, target, f) in std::mem::take(&mut d.itf_pointers) {
+        if let Some((u, _)) = itfs.get(&a) {
+            out.push((*u, d.itf_pointer_fn(a, target, f)));
+        }
+    }
     diags.append(&mut d.diags);
     for (u, item) in out {
         if let Some(unit) = units.get_mut(u) {
@@ -364,6 +369,9 @@ struct Oop<'a> {
     itf_equals: Vec<(Symbol, Symbol)>,
     /// Pairs (source, destination) of `__QUERYINTERFACE` calls (`__IQ_`).
     itf_queries: Vec<(Symbol, Symbol)>,
+    /// `__QUERYPOINTER` calls: (source interface, pointer target type as
+    /// written, generated function name).
+    itf_pointers: Vec<(Symbol, TypeSpec, Symbol)>,
     /// TYPE declarations, every variable of every plain POU, the globals (as written).
     types: HashMap<Symbol, TypeSpec>,
     pou_vars: HashMap<Symbol, HashMap<Symbol, TypeSpec>>,
@@ -402,6 +410,7 @@ impl<'a> Oop<'a> {
             returns: HashMap::new(),
             itf_equals: Vec::new(),
             itf_queries: Vec::new(),
+            itf_pointers: Vec::new(),
             types: HashMap::new(),
             pou_vars: HashMap::new(),
             globals: HashMap::new(),
