@@ -315,7 +315,18 @@ impl<'a> Reader<'a> {
                 return;
             }
         };
+        // `N7`, `B3`: the data files' own arrays.
+        let file_like = name.up.len() > 1
+            && name
+                .up
+                .chars()
+                .next()
+                .and_then(FileType::from_letter)
+                .is_some()
+            && name.up[1..].bytes().all(|b| b.is_ascii_digit());
         if !is_name(&name.text)
+            || file_like
+            || name.up == "SLC"
             || slc::looks_like(&name.text)
             || instr::find(&name.up).is_some()
             || name.up.starts_with("__")
