@@ -151,7 +151,7 @@ impl<'a> Emitter<'a> {
         s.push_str("    __slc_started : BOOL;\n    __slc_last : LINT;\n    __slc_fault : __SLC_MAJOR_FAULT;\nEND_VAR\nVAR\n");
         let _ = writeln!(
             s,
-            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;",
+            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d, __i : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;",
             MAX_BRANCH * (MAX_CALLS + 1) - 1,
             self.rems.len().max(1) - 1
         );
@@ -559,6 +559,7 @@ impl<'a> Emitter<'a> {
                 }
                 s
             }
+            "COP" | "FLL" | "FFL" | "FFU" | "BSL" | "BSR" => self.file_ins(n, r, i),
             "SBR" | "LBL" | "NOP" => String::new(),
             "AFI" => "    __rc := FALSE;\n".into(),
             "MCR" => "    __mcr := __rc;\n".into(),
@@ -592,6 +593,115 @@ impl<'a> Emitter<'a> {
                     format!("`{other}`: this SLC-500 instruction is not implemented by automat"),
                 );
                 String::new()
+            }
+        }
+    }
+
+    /// The file instructions: COP, FLL, the FIFO pair FFL/FFU and the bit
+    /// shifts BSL/BSR over a run of words (`#N7:10`).
+    fn file_ins(&mut self, n: u32, r: usize, i: &Ins) -> String {
+        let ops = &i.ops;
+        let op = |k: usize| ops.get(k).cloned().unwrap_or(Operand::Int(0));
+        let len = |k: usize| match ops.get(k) {
+            Some(Operand::Int(v)) => *v,
+            _ => 1,
+        };
+        let at = |o: &Operand| {
+            let a = addr(o);
+            (a.array(), a.index())
+        };
+        match i.mn {
+            "COP" => {
+                if is_real(&op(0)) != is_real(&op(1)) {
+                    self.err(Code::E232, i.span, format!("LAD {n} rung {r}, `{}`: COP copies between files of one kind (integer words or floats)", i.text));
+                    return String::new();
+                }
+                let ((sa, si), (da, di)) = (at(&op(0)), at(&op(1)));
+                format!(
+                    "    IF __rc THEN FOR __i := 0 TO {} DO {da}[{di} + __i] := {sa}[{si} + __i]; END_FOR; END_IF;\n",
+                    len(2) - 1
+                )
+            }
+            "FLL" => {
+                let dest = addr(&op(1));
+                let v = if dest.ty == FileType::F {
+                    match op(0) {
+                        Operand::Addr(a) if a.ty == FileType::F => place(a),
+                        o => format!("LREAL_TO_REAL({})", lreal(&o)),
+                    }
+                } else if is_real(&op(0)) {
+                    self.err(Code::E232, i.span, format!("LAD {n} rung {r}, `{}`: FLL fills integer words from an integer source", i.text));
+                    return String::new();
+                } else {
+                    int(&op(0))
+                };
+                let (da, di) = at(&op(1));
+                format!(
+                    "    IF __rc THEN FOR __i := 0 TO {} DO {da}[{di} + __i] := {v}; END_FOR; END_IF;\n",
+                    len(2) - 1
+                )
+            }
+            "FFL" | "FFU" => {
+                if !self.ints(n, r, i, ops) {
+                    return String::new();
+                }
+                let ctl = addr(&op(2));
+                let l = len(3);
+                if let Operand::Int(pos) = op(4) {
+                    self.layout.preset(ctl, 1, l);
+                    self.layout.preset(ctl, 2, pos);
+                }
+                let (ca, ci) = (ctl.array(), ctl.index());
+                let (c, ln, pos) = (
+                    format!("{ca}[{ci}]"),
+                    format!("{ca}[{}]", ci + 1),
+                    format!("{ca}[{}]", ci + 2),
+                );
+                let mut s = String::new();
+                if i.mn == "FFL" {
+                    let (fa, fi) = at(&op(1));
+                    let _ = writeln!(s, "    IF __rc AND NOT {c}.15 THEN IF {pos} >= 0 AND {pos} < {ln} AND {pos} < {l} THEN {fa}[{fi} + {pos}] := {}; {pos} := {pos} + 1; END_IF; END_IF;", int(&op(0)));
+                    let _ = writeln!(s, "    {c}.15 := __rc;");
+                } else {
+                    let (fa, fi) = at(&op(0));
+                    let dest = place(addr(&op(1)));
+                    let _ = writeln!(s, "    IF __rc AND NOT {c}.14 THEN IF {pos} > 0 AND {pos} <= {l} THEN {dest} := {fa}[{fi}]; FOR __i := 0 TO INT_TO_DINT({pos}) - 2 DO {fa}[{fi} + __i] := {fa}[{fi} + __i + 1]; END_FOR; {fa}[{fi} + {pos} - 1] := 0; {pos} := {pos} - 1; END_IF; END_IF;");
+                    let _ = writeln!(s, "    {c}.14 := __rc;");
+                }
+                let _ = writeln!(s, "    {c}.13 := {pos} >= {ln}; {c}.12 := {pos} = 0;");
+                s
+            }
+            _ => {
+                // BSL / BSR
+                let ctl = addr(&op(1));
+                let l = len(3);
+                self.layout.preset(ctl, 1, l);
+                let (ca, ci) = (ctl.array(), ctl.index());
+                let c = format!("{ca}[{ci}]");
+                let (aa, ai) = at(&op(0));
+                let bit = |k: &str| format!("__SLC_GETBIT({aa}[{ai} + ({k}) / 16], ({k}) MOD 16)");
+                let set = |k: &str, v: &str| {
+                    format!("{aa}[{ai} + ({k}) / 16] := __SLC_SETBIT({aa}[{ai} + ({k}) / 16], ({k}) MOD 16, {v});")
+                };
+                let src = place(addr(&op(2)));
+                let last = (l - 1).to_string();
+                let body = if i.mn == "BSL" {
+                    format!(
+                        "{c}.10 := {}; FOR __i := {last} TO 1 BY -1 DO {} END_FOR; {}",
+                        bit(&last),
+                        set("__i", &bit("__i - 1")),
+                        set("0", &src)
+                    )
+                } else {
+                    format!(
+                        "{c}.10 := {}; FOR __i := 0 TO {} DO {} END_FOR; {}",
+                        bit("0"),
+                        l - 2,
+                        set("__i", &bit("__i + 1")),
+                        set(&last, &src)
+                    )
+                };
+                format!("    IF __rc AND NOT {c}.15 THEN {body} {c}.13 := TRUE; END_IF;\n    IF NOT __rc THEN {c}.13 := FALSE; END_IF;\n    {c}.15 := __rc;\n")
             }
         }
     }

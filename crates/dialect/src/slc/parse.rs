@@ -584,6 +584,35 @@ impl<'a> Reader<'a> {
                     self.p.used.push((*a, self.span(ot)));
                 }
             }
+            // A run of words: its last element is used too.
+            for (start, words) in runs(def.name, &ops) {
+                if def.name != "BSL" && def.name != "BSR" && words > 128 {
+                    self.err(
+                        Code::E232,
+                        ispan,
+                        format!("`{text}`: the length is 1 to 128 words (BSL, BSR: 2048 bits)"),
+                    );
+                    ok = false;
+                    break;
+                }
+                let last = Address {
+                    elem: start.elem + words - 1,
+                    ..start
+                };
+                if last.elem > slc::MAX_ELEMENT {
+                    self.err(
+                        Code::E234,
+                        ispan,
+                        format!(
+                            "`{text}`: the run of {words} words from element {} passes element 255",
+                            start.elem
+                        ),
+                    );
+                    ok = false;
+                    break;
+                }
+                self.p.used.push((last, ispan));
+            }
             elems.push(Elem::Ins(Ins {
                 mn: def.name,
                 ops,
@@ -665,6 +694,27 @@ impl<'a> Reader<'a> {
                     _ => Err(wrong("no label number (0 to 999, `Q2:5` or `5`)")),
                 }
             }
+            Kind::Length => match constant(&t.up) {
+                Some(Operand::Int(v)) if (1..=2048).contains(&v) => Ok(Operand::Int(v)),
+                _ => Err(wrong("no length (a constant 1 to 128 words, 2048 bits)")),
+            },
+            Kind::FileRef => {
+                let Some(rest) = t.text.strip_prefix('#') else {
+                    return Err(wrong(
+                        "no file operand: a run of words starts with `#` (`#N7:10`)",
+                    ));
+                };
+                let a = slc::parse(rest).map_err(|why| (Code::E236, why))?;
+                if a.part != Part::Element
+                    || a.ty.words() != 1
+                    || matches!(a.ty, FileType::I | FileType::O)
+                {
+                    return Err(wrong(
+                        "no file operand: `#` starts a run of B, N, S or F elements (`#N7:10`)",
+                    ));
+                }
+                Ok(Operand::Addr(a))
+            }
             Kind::Source if constant(&t.up).is_some() => match constant(&t.up) {
                 Some(Operand::Int(v)) if !(-32768..=32767).contains(&v) => {
                     Err(wrong("an integer constant outside -32768 to 32767"))
@@ -679,6 +729,7 @@ impl<'a> Reader<'a> {
                     Kind::Timer => a.ty == FileType::T && a.part == Part::Element,
                     Kind::Counter => a.ty == FileType::C && a.part == Part::Element,
                     Kind::Structure => a.is_structure(),
+                    Kind::Control => a.ty == FileType::R && a.part == Part::Element,
                     Kind::Source | Kind::Dest => !a.is_bit() && !a.is_structure(),
                     _ => false,
                 };
@@ -694,6 +745,7 @@ impl<'a> Reader<'a> {
                         Kind::Structure => {
                             "no timer, counter or control element (`T4:0`, `C5:0`, `R6:0`)"
                         }
+                        Kind::Control => "no control element: an element of an R file (`R6:0`)",
                         Kind::Dest => "no word address to write (`N7:0`, `T4:0.PRE`, `F8:1`)",
                         _ => "no word address or constant (`N7:0`, `T4:0.ACC`, `F8:1`, `25`)",
                     }))
@@ -701,6 +753,34 @@ impl<'a> Reader<'a> {
             }
         }
     }
+}
+
+/// The runs of words a file instruction works on: each one's first
+/// element and number of words.
+pub fn runs(mn: &str, ops: &[Operand]) -> Vec<(Address, u32)> {
+    let (files, len): (&[usize], _) = match mn {
+        "COP" => (&[0, 1], ops.get(2)),
+        "FLL" => (&[1], ops.get(2)),
+        "FFL" => (&[1], ops.get(3)),
+        "FFU" | "BSL" | "BSR" => (&[0], ops.get(3)),
+        _ => return Vec::new(),
+    };
+    let Some(Operand::Int(n)) = len else {
+        return Vec::new();
+    };
+    let n = u32::try_from(*n).unwrap_or(1).max(1);
+    let words = if mn == "BSL" || mn == "BSR" {
+        n.div_ceil(16)
+    } else {
+        n
+    };
+    files
+        .iter()
+        .filter_map(|&k| match ops.get(k) {
+            Some(Operand::Addr(a)) => Some((*a, words)),
+            _ => None,
+        })
+        .collect()
 }
 
 /// A numeric constant: an integer or a real (`1.5`, `-2.0E3`).
