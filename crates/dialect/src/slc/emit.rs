@@ -216,12 +216,13 @@ impl<'a> Emitter<'a> {
         // Segments start at rungs beginning with LBL.
         let mut seg = 0usize;
         for (r, rung) in rungs.iter().enumerate() {
+            let rn = rung.number;
             for (k, e) in rung.elems.iter().enumerate() {
                 let Elem::Ins(i) = e else { continue };
                 match i.mn {
                     "LBL" => {
                         if k != 0 {
-                            self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `{}`: LBL is the first instruction of its rung", i.text));
+                            self.err(Code::E237, i.span, format!("LAD {n} rung {rn}, `{}`: LBL is the first instruction of its rung", i.text));
                             continue;
                         }
                         if r > 0 {
@@ -229,12 +230,12 @@ impl<'a> Emitter<'a> {
                         }
                         if let Some(Operand::Number(l)) = i.ops.first() {
                             if level.labels.insert(*l, seg).is_some() {
-                                self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `{}`: label {l} is defined twice in this file", i.text));
+                                self.err(Code::E237, i.span, format!("LAD {n} rung {rn}, `{}`: label {l} is defined twice in this file", i.text));
                             }
                         }
                     }
                     "SBR" if n == 2 || r != 0 || k != 0 => {
-                        self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `SBR`: SBR is the first instruction of a subroutine file (3 to 255)"));
+                        self.err(Code::E237, i.span, format!("LAD {n} rung {rn}, `SBR`: SBR is the first instruction of a subroutine file (3 to 255)"));
                     }
                     _ => {}
                 }
@@ -253,7 +254,7 @@ impl<'a> Emitter<'a> {
         let mut seg = 0usize;
         for (r, rung) in rungs.iter().enumerate() {
             let starts = matches!(rung.elems.first(), Some(Elem::Ins(i)) if i.mn == "LBL");
-            let code = self.rung(n, r, rung, &level);
+            let code = self.rung(n, rung.number, rung, &level);
             match u {
                 Some(u) if starts && r > 0 => {
                     seg += 1;

@@ -51,6 +51,8 @@ pub struct Rung {
     pub elems: Vec<Elem>,
     pub span: Span,
     pub comment: Option<String>,
+    /// Its number in its program file (from 0).
+    pub number: usize,
 }
 
 #[derive(Clone, Debug)]
@@ -59,6 +61,8 @@ pub struct LadFile {
     pub name: String,
     pub span: Span,
     pub rungs: Vec<Rung>,
+    /// Rungs read, those dropped for an error included.
+    pub seen: usize,
 }
 
 #[derive(Clone, Debug)]
@@ -282,6 +286,7 @@ impl<'a> Reader<'a> {
                             name,
                             span,
                             rungs: Vec::new(),
+                            seen: 0,
                         });
                     }
                 }
@@ -480,6 +485,22 @@ impl<'a> Reader<'a> {
     /// error (reported once).
     fn rung(&mut self, toks: &[Tok], span: Span) {
         let comment = self.comment.take();
+        // The program file exists once it has a rung, even one with an
+        // error; rungs are numbered from 0 in each file, those dropped for
+        // an error included.
+        let (lad, file) = (self.lad, self.file);
+        let number = {
+            let f = self.p.files.entry(lad).or_insert_with(|| LadFile {
+                number: lad,
+                name: String::new(),
+                span: Span::new(file, 0, 0),
+                rungs: Vec::new(),
+                seen: 0,
+            });
+            f.seen += 1;
+            f.seen - 1
+        };
+        let at = format!("LAD {lad} rung {number}");
         let mut elems = Vec::new();
         let mut depth = 0u32;
         let mut i = 0;
@@ -498,7 +519,7 @@ impl<'a> Reader<'a> {
                     self.err(
                         Code::E235,
                         s,
-                        format!("`{}` outside a branch: no `BST` opened it", t.up),
+                        format!("{at}: `{}` outside a branch: no `BST` opened it", t.up),
                     );
                     ok = false;
                     break;
@@ -521,14 +542,14 @@ impl<'a> Reader<'a> {
                     (
                         Code::E231,
                         format!(
-                            "`{}`: this SLC-500 instruction is not implemented by automat",
+                            "{at}: `{}`: this SLC-500 instruction is not implemented by automat",
                             t.text
                         ),
                     )
                 } else {
                     (
                         Code::E230,
-                        format!("`{}` is not an SLC-500 instruction", t.text),
+                        format!("{at}: `{}` is not an SLC-500 instruction", t.text),
                     )
                 };
                 self.err(why.0, s, why.1);
@@ -553,7 +574,7 @@ impl<'a> Reader<'a> {
                     Code::E233,
                     ispan,
                     format!(
-                        "`{text}`: {} takes {} operand(s): {}",
+                        "{at}, `{text}`: {} takes {} operand(s): {}",
                         def.name,
                         kinds.len(),
                         instr::describe(kinds)
@@ -568,7 +589,7 @@ impl<'a> Reader<'a> {
                     Ok(v) => ops.push(v),
                     Err((code, why)) => {
                         let os = self.span(o);
-                        self.err(code, os, format!("`{text}`: {why}"));
+                        self.err(code, os, format!("{at}, `{text}`: {why}"));
                         ok = false;
                         break;
                     }
@@ -588,7 +609,9 @@ impl<'a> Reader<'a> {
                     self.err(
                         Code::E232,
                         ispan,
-                        format!("`{text}`: the length is 1 to 128 words (BSL, BSR: 2048 bits)"),
+                        format!(
+                            "{at}, `{text}`: the length is 1 to 128 words (BSL, BSR: 2048 bits)"
+                        ),
                     );
                     ok = false;
                     break;
@@ -602,7 +625,7 @@ impl<'a> Reader<'a> {
                         Code::E234,
                         ispan,
                         format!(
-                            "`{text}`: the run of {words} words from element {} passes element 255",
+                            "{at}, `{text}`: the run of {words} words from element {} passes element 255",
                             start.elem
                         ),
                     );
@@ -610,6 +633,9 @@ impl<'a> Reader<'a> {
                     break;
                 }
                 self.p.used.push((last, ispan));
+            }
+            if !ok {
+                break;
             }
             elems.push(Elem::Ins(Ins {
                 mn: def.name,
@@ -623,7 +649,7 @@ impl<'a> Reader<'a> {
             self.err(
                 Code::E235,
                 span,
-                "a branch is not closed: `BST` without its `BND`".into(),
+                format!("{at}: a branch is not closed: `BST` without its `BND`"),
             );
             ok = false;
         }
@@ -633,19 +659,14 @@ impl<'a> Reader<'a> {
         if elems.is_empty() {
             return;
         }
-        let lad = self.lad;
-        let file = self.file;
-        let f = self.p.files.entry(lad).or_insert_with(|| LadFile {
-            number: lad,
-            name: String::new(),
-            span: Span::new(file, 0, 0),
-            rungs: Vec::new(),
-        });
-        f.rungs.push(Rung {
-            elems,
-            span,
-            comment,
-        });
+        if let Some(f) = self.p.files.get_mut(&lad) {
+            f.rungs.push(Rung {
+                elems,
+                span,
+                comment,
+                number,
+            });
+        }
     }
 
     fn address(&self, t: &Tok) -> Result<Address, String> {
