@@ -561,6 +561,7 @@ impl<'a> Emitter<'a> {
                 s
             }
             "COP" | "FLL" | "FFL" | "FFU" | "BSL" | "BSR" => self.file_ins(n, r, i),
+            "SQO" | "SQC" => self.sequencer(n, r, i),
             "SBR" | "LBL" | "NOP" => String::new(),
             "AFI" => "    __rc := FALSE;\n".into(),
             "MCR" => "    __mcr := __rc;\n".into(),
@@ -705,6 +706,47 @@ impl<'a> Emitter<'a> {
                 format!("    IF __rc AND NOT {c}.15 THEN {body} {c}.13 := TRUE; END_IF;\n    IF NOT __rc THEN {c}.13 := FALSE; END_IF;\n    {c}.15 := __rc;\n")
             }
         }
+    }
+
+    /// SQO and SQC step through a file of LEN + 1 words (step 0 the
+    /// start) on each false -> true change of the rung, wrapping from LEN to
+    /// 1: SQO moves the step's word through the mask into the destination,
+    /// SQC compares the source with it through the mask (FD, bit 8).
+    fn sequencer(&mut self, n: u32, r: usize, i: &Ins) -> String {
+        if !self.ints(n, r, i, &i.ops) {
+            return String::new();
+        }
+        let op = |k: usize| i.ops.get(k).cloned().unwrap_or(Operand::Int(0));
+        let ctl = addr(&op(3));
+        let l = match op(4) {
+            Operand::Int(v) => v,
+            _ => 1,
+        };
+        self.layout.preset(ctl, 1, l);
+        if let Operand::Int(p) = op(5) {
+            self.layout.preset(ctl, 2, p);
+        }
+        let (ca, ci) = (ctl.array(), ctl.index());
+        let (c, ln, pos) = (
+            format!("{ca}[{ci}]"),
+            format!("{ca}[{}]", ci + 1),
+            format!("{ca}[{}]", ci + 2),
+        );
+        let f = addr(&op(0));
+        let word = format!("{}[{} + {pos}]", f.array(), f.index());
+        let act = if i.mn == "SQO" {
+            let d = place(addr(&op(2)));
+            format!("{d} := __SLC_MVM({word}, {}, {d});", int(&op(1)))
+        } else {
+            format!(
+                "{c}.8 := __SLC_MEQ({}, {}, {word});",
+                int(&op(2)),
+                int(&op(1))
+            )
+        };
+        format!(
+            "    IF __rc AND NOT {c}.15 THEN IF {pos} >= {ln} OR {pos} < 0 THEN {pos} := 1; ELSE {pos} := {pos} + 1; END_IF; IF {pos} <= {l} THEN {act} END_IF; END_IF;\n    {c}.15 := __rc;\n    {c}.13 := {pos} >= {ln};\n"
+        )
     }
 
     /// Bitwise instructions take integer words only.

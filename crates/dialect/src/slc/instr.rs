@@ -95,18 +95,27 @@ pub const TABLE: &[Def] = &[
     d("FFU", &[FileRef, Dest, Control, Length, Preset], true),
     d("BSL", &[FileRef, Control, Bit, Length], true),
     d("BSR", &[FileRef, Control, Bit, Length], true),
+    d(
+        "SQO",
+        &[FileRef, Source, Dest, Control, Length, Preset],
+        true,
+    ),
+    d(
+        "SQC",
+        &[FileRef, Source, Source, Control, Length, Preset],
+        true,
+    ),
     d("AFI", &[], false),
     d("NOP", &[], false),
 ];
 
 /// SLC-500 instructions that exist but automat does not run yet.
 const UNIMPLEMENTED: &[&str] = &[
-    "LFL", "LFU", "SQO", "SQC", "SQL", "PID", "CPT", "TOD", "FRD", "DCD", "ENC", "SWP", "ONS",
-    "OSF", "HSC", "IIM", "IOM", "REF", "SUS", "INT", "STD", "STE", "STS", "UID", "UIE", "DDV",
-    "SVC", "MSG", "ABL", "ACB", "ACI", "ACN", "AEX", "AHL", "ARD", "ARL", "AWA", "AWT", "ASC",
-    "ASR", "DEG", "RAD", "SIN", "COS", "TAN", "ASN", "ACS", "ATN", "LN", "LOG", "XPY", "SRT",
-    "STD", "FBC", "DDT", "BTR", "BTW", "RPC", "RHC", "TDF", "PTO", "PWM", "RTA", "HSL", "RAC",
-    "REAL",
+    "LFL", "LFU", "SQL", "PID", "CPT", "TOD", "FRD", "DCD", "ENC", "SWP", "ONS", "OSF", "HSC",
+    "IIM", "IOM", "REF", "SUS", "INT", "STD", "STE", "STS", "UID", "UIE", "DDV", "SVC", "MSG",
+    "ABL", "ACB", "ACI", "ACN", "AEX", "AHL", "ARD", "ARL", "AWA", "AWT", "ASC", "ASR", "DEG",
+    "RAD", "SIN", "COS", "TAN", "ASN", "ACS", "ATN", "LN", "LOG", "XPY", "SRT", "STD", "FBC",
+    "DDT", "BTR", "BTW", "RPC", "RHC", "TDF", "PTO", "PWM", "RTA", "HSL", "RAC", "REAL",
 ];
 
 pub fn find(up: &str) -> Option<&'static Def> {

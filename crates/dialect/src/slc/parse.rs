@@ -605,7 +605,9 @@ impl<'a> Reader<'a> {
             }
             // A run of words: its last element is used too.
             for (start, words) in runs(def.name, &ops) {
-                if def.name != "BSL" && def.name != "BSR" && words > 128 {
+                if !matches!(def.name, "BSL" | "BSR")
+                    && words > 128 + u32::from(matches!(def.name, "SQO" | "SQC"))
+                {
                     self.err(
                         Code::E232,
                         ispan,
@@ -782,6 +784,15 @@ pub fn runs(mn: &str, ops: &[Operand]) -> Vec<(Address, u32)> {
         "FLL" => (&[1], ops.get(2)),
         "FFL" => (&[1], ops.get(3)),
         "FFU" | "BSL" | "BSR" => (&[0], ops.get(3)),
+        // Steps 0..=LEN: LEN + 1 words.
+        "SQO" | "SQC" => {
+            return match (ops.first(), ops.get(4)) {
+                (Some(Operand::Addr(a)), Some(Operand::Int(n))) => {
+                    vec![(*a, u32::try_from(*n).unwrap_or(0) + 1)]
+                }
+                _ => Vec::new(),
+            }
+        }
         _ => return Vec::new(),
     };
     let Some(Operand::Int(n)) = len else {
