@@ -89,3 +89,22 @@ fn an_unhandled_overflow_is_a_major_fault() {
     assert!(err.contains("value 1 outside 0..0"), "{err}");
     assert!(err.contains("PLC time T#0s"), "{err}");
 }
+
+/// A scenario names the SLC addresses (`B3:0/2`, `T4:0/DN`, `T4:0.ACC`,
+/// `O:3/3`) as the ladder does.
+#[test]
+fn scenarios_take_slc_addresses() {
+    let crane = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/crane-slc");
+    let scn = tmp(
+        "addr.scn",
+        "duration 20s\nat 500ms press Pornire for 200ms\nexpect at 1s B3:0/2 AND O:3/3 AND NOT B3:0/1\nexpect at 16s B3:0/5 AND T4:0.ACC > 0 AND NOT T4:0/DN\nexpect always O:3/3 = M2S AND I:1/1 = Pornire\n",
+    );
+    let shown = scn.display().to_string();
+    let out = automat(&["run", crane, "--scenario", &shown]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).ends_with(&format!("scenario {shown}: every expectation held\n")),
+        "{}",
+        text(&out.stderr)
+    );
+}
