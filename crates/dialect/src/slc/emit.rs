@@ -31,6 +31,8 @@ pub struct Emitter<'a> {
     loops: u32,
     /// A remainder slot per timer element: (file, word index) → slot.
     rems: BTreeMap<(u32, u32), usize>,
+    /// A slot per PID block for its integral and last PV.
+    pids: BTreeMap<(u32, u32), usize>,
 }
 
 /// Where the rungs of one inlined file run.
@@ -102,6 +104,7 @@ impl<'a> Emitter<'a> {
             stack: Vec::new(),
             loops: 0,
             rems: BTreeMap::new(),
+            pids: BTreeMap::new(),
         }
     }
 
@@ -151,9 +154,10 @@ impl<'a> Emitter<'a> {
         s.push_str("    __slc_started : BOOL;\n    __slc_last : LINT;\n    __slc_fault : __SLC_MAJOR_FAULT;\nEND_VAR\nVAR\n");
         let _ = writeln!(
             s,
-            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d, __i : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;",
+            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d, __i : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;\n    __pidi, __pidp : ARRAY[0..{}] OF LREAL;",
             MAX_BRANCH * (MAX_CALLS + 1) - 1,
-            self.rems.len().max(1) - 1
+            self.rems.len().max(1) - 1,
+            self.pids.len().max(1) - 1
         );
         for k in 0..self.loops {
             let _ = writeln!(s, "    __pc{k} : INT;\n    __j{k} : BOOL;");
@@ -562,6 +566,19 @@ impl<'a> Emitter<'a> {
             }
             "COP" | "FLL" | "FFL" | "FFU" | "BSL" | "BSR" => self.file_ins(n, r, i),
             "SQO" | "SQC" => self.sequencer(n, r, i),
+            "PID" => {
+                if !self.ints(n, r, i, ops) {
+                    return String::new();
+                }
+                let (arr, b) = (a0.array(), a0.index());
+                let w = |k: u32| format!("{arr}[{}]", b + k);
+                let k = self.pid_slot(a0);
+                format!(
+                    "    __x := __SLC_PID(RUNG := __rc, D := __d, PV := {}, SP := {}, KC := {}, TI := {}, TD := {}, BIAS := {}, OMAX := {}, OMIN := {}, UPD := {}, CTL := {}, W14 := {}, W15 := {}, W16 := {}, W17 := {}, W18 := {}, CV := {}, REM := __rem[{k}], I := __pidi[{}], PREV := __pidp[{}]);\n",
+                    int(&op(1)), w(2), w(3), w(4), w(5), w(6), w(11), w(12), w(13), w(0), w(14), w(15), w(16), w(17), w(18),
+                    place(addr(&op(2))), self.pids_index(a0), self.pids_index(a0)
+                )
+            }
             "SBR" | "LBL" | "NOP" => String::new(),
             "AFI" => "    __rc := FALSE;\n".into(),
             "MCR" => "    __mcr := __rc;\n".into(),
@@ -763,6 +780,17 @@ impl<'a> Emitter<'a> {
             return false;
         }
         true
+    }
+
+    /// The remainder slot of a PID block (shared with the timers' slots).
+    fn pid_slot(&mut self, a: Address) -> usize {
+        self.rem(a)
+    }
+
+    /// The integral and last-PV slot of a PID block.
+    fn pids_index(&mut self, a: Address) -> usize {
+        let next = self.pids.len();
+        *self.pids.entry((a.file, a.index())).or_insert(next)
     }
 
     fn rem(&mut self, a: Address) -> usize {

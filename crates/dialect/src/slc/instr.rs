@@ -29,6 +29,8 @@ pub enum Kind {
     FileRef,
     /// A control element (`R6:0`).
     Control,
+    /// A PID control block: an element of an N file with 23 words.
+    Block,
     /// A length: 1 to 128 words (COP, FLL, FFL, FFU) or 1 to 2048 bits
     /// (BSL, BSR), checked by the instruction.
     Length,
@@ -105,17 +107,18 @@ pub const TABLE: &[Def] = &[
         &[FileRef, Source, Source, Control, Length, Preset],
         true,
     ),
+    d("PID", &[Block, Source, Dest], true),
     d("AFI", &[], false),
     d("NOP", &[], false),
 ];
 
 /// SLC-500 instructions that exist but automat does not run yet.
 const UNIMPLEMENTED: &[&str] = &[
-    "LFL", "LFU", "SQL", "PID", "CPT", "TOD", "FRD", "DCD", "ENC", "SWP", "ONS", "OSF", "HSC",
-    "IIM", "IOM", "REF", "SUS", "INT", "STD", "STE", "STS", "UID", "UIE", "DDV", "SVC", "MSG",
-    "ABL", "ACB", "ACI", "ACN", "AEX", "AHL", "ARD", "ARL", "AWA", "AWT", "ASC", "ASR", "DEG",
-    "RAD", "SIN", "COS", "TAN", "ASN", "ACS", "ATN", "LN", "LOG", "XPY", "SRT", "STD", "FBC",
-    "DDT", "BTR", "BTW", "RPC", "RHC", "TDF", "PTO", "PWM", "RTA", "HSL", "RAC", "REAL",
+    "LFL", "LFU", "SQL", "CPT", "TOD", "FRD", "DCD", "ENC", "SWP", "ONS", "OSF", "HSC", "IIM",
+    "IOM", "REF", "SUS", "INT", "STD", "STE", "STS", "UID", "UIE", "DDV", "SVC", "MSG", "ABL",
+    "ACB", "ACI", "ACN", "AEX", "AHL", "ARD", "ARL", "AWA", "AWT", "ASC", "ASR", "DEG", "RAD",
+    "SIN", "COS", "TAN", "ASN", "ACS", "ATN", "LN", "LOG", "XPY", "SRT", "STD", "FBC", "DDT",
+    "BTR", "BTW", "RPC", "RHC", "TDF", "PTO", "PWM", "RTA", "HSL", "RAC", "REAL",
 ];
 
 pub fn find(up: &str) -> Option<&'static Def> {
@@ -147,6 +150,7 @@ pub fn describe(kinds: &[Kind]) -> String {
             FileRef => "#file",
             Control => "control",
             Length => "length",
+            Block => "control block",
         })
         .collect::<Vec<_>>()
         .join(", ")

@@ -751,6 +751,7 @@ impl<'a> Reader<'a> {
                     Kind::Counter => a.ty == FileType::C && a.part == Part::Element,
                     Kind::Structure => a.is_structure(),
                     Kind::Control => a.ty == FileType::R && a.part == Part::Element,
+                    Kind::Block => a.ty == FileType::N && a.part == Part::Element,
                     Kind::Source | Kind::Dest => !a.is_bit() && !a.is_structure(),
                     _ => false,
                 };
@@ -765,6 +766,9 @@ impl<'a> Reader<'a> {
                         Kind::Counter => "no counter: a counter is an element of a C file (`C5:0`)",
                         Kind::Structure => {
                             "no timer, counter or control element (`T4:0`, `C5:0`, `R6:0`)"
+                        }
+                        Kind::Block => {
+                            "no PID control block: an element of an N file (`N10:0`, 23 words)"
                         }
                         Kind::Control => "no control element: an element of an R file (`R6:0`)",
                         Kind::Dest => "no word address to write (`N7:0`, `T4:0.PRE`, `F8:1`)",
@@ -784,6 +788,12 @@ pub fn runs(mn: &str, ops: &[Operand]) -> Vec<(Address, u32)> {
         "FLL" => (&[1], ops.get(2)),
         "FFL" => (&[1], ops.get(3)),
         "FFU" | "BSL" | "BSR" => (&[0], ops.get(3)),
+        "PID" => {
+            return match ops.first() {
+                Some(Operand::Addr(a)) => vec![(*a, 23)],
+                _ => Vec::new(),
+            }
+        }
         // Steps 0..=LEN: LEN + 1 words.
         "SQO" | "SQC" => {
             return match (ops.first(), ops.get(4)) {
