@@ -283,3 +283,26 @@ fn live_drawings_of_the_ld_and_fbd_examples() {
         ("in-variable", Some("T_raw"))
     );
 }
+
+/// An SLC-500 program file is drawn as rungs: the crane's 15 rungs, one
+/// rail each, its 24 XIC contacts, 4 OTE and 18 OTL/OTU coils, the OSRs and
+/// the TON as boxes, each operand with its symbol.
+#[test]
+fn slc_rungs_are_drawn_as_ladder() {
+    let d = draw("examples/crane-slc/crane.slc", "LAD2");
+    let s = svg::diagram(&d);
+    // A rail is two shapes (its bar and its pin).
+    assert_eq!(count(&s, "rail"), 30);
+    // Four strokes per contact and per coil.
+    assert_eq!(count(&s, "contact"), 24 * 4);
+    assert_eq!(count(&s, "coil"), 22 * 4);
+    assert_eq!(count(&s, "block"), 3);
+    assert!(s.contains("Pornire I:1/1"));
+    assert!(s.contains("T4:0/DN"));
+    assert!(s.contains("rung 6: R5: step 5 action"));
+    // By the file's name too.
+    assert_eq!(
+        svg::diagram(&draw("examples/crane-slc/crane.slc", "main")),
+        s
+    );
+}
