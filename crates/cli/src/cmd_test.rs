@@ -129,6 +129,8 @@ struct BuiltProject {
     project: Project,
     program: Program,
     warnings: String,
+    /// Its compiled backends, lent to one scenario at a time.
+    backends: crate::test_pool::Pool,
 }
 
 type Built = Result<BuiltProject, String>;
@@ -259,7 +261,7 @@ impl Shared {
         report.warnings = built.warnings.clone();
         report.title = format!("{shown} ({})", scn.name);
         let (project, program) = (&built.project, &built.program);
-        let exec = crate::engines::build_quiet(program.clone(), self.engine);
+        let exec = built.backends.lend(program, self.engine);
         match automat_scenario::run_on::<_, std::io::Sink>(program, exec, project, &scn, None) {
             Err(d) => report.fail(Status::Error, render::render_report(&map, &d)),
             Ok(o) if o.failures.is_empty() => report,
@@ -369,6 +371,7 @@ fn build_project(toml: &Path) -> Built {
         project: p,
         program: prog,
         warnings,
+        backends: crate::test_pool::Pool::default(),
     })
 }
 

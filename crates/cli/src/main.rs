@@ -42,6 +42,7 @@ mod plot;
 mod project_run;
 mod realtime_run;
 mod retain_run;
+mod test_pool;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
