@@ -306,6 +306,26 @@ codes! {
     E213 => "inheritance too large",
         "A class has more than 64 levels of bases, or the project's classes need more than 50,000 method bodies (every class compiles its own copy of each inherited method). Flatten the hierarchy.";
 
+    // ---- Allen-Bradley SLC-500 ladder (automat-dialect, slc/) ----
+    E230 => "unknown SLC-500 instruction",
+        "A word of a rung is no SLC-500 instruction (nor `BST`, `NXB`, `BND`, `SOR`, `EOR`). docs/allen-bradley.md lists the instructions automat runs.";
+    E231 => "SLC-500 instruction not implemented",
+        "The instruction exists on the SLC-500 but automat does not run it (yet). It is refused, never skipped: a rung that silently did nothing would not be the program. docs/allen-bradley.md lists the instructions automat runs.";
+    E232 => "wrong operand kind",
+        "An operand is not of the kind its instruction takes: OTE, XIC and the other bit instructions take a bit (`B3/1`, `I:1/1`, `T4:0/DN`), TON/TOF/RTO a timer element (`T4:0`), CTU/CTD a counter (`C5:0`), RES a timer, counter or control element, math and compare instructions words (`N7:0`, `T4:0.ACC`, `F8:1`) or constants, bitwise instructions integer words, a time base 0.01 or 1.0.";
+    E233 => "missing operand",
+        "The instruction is followed by fewer operands than it takes (RSLogix order: `TON T4:0 0.01 300 0`, `CTU C5:0 7 0`, `MOV N7:0 N7:1`, `LIM 10 N7:0 20`).";
+    E234 => "address beyond a declared file",
+        "The address names an element past the size the data-file table (`DATA N7 10`) gives its file. Enlarge the file or correct the address.";
+    E235 => "rung structure",
+        "A branch is not closed (`BST` without `BND`), `NXB` or `BND` has no `BST`, a rung started with `SOR` has no `EOR`, or branches nest deeper than 15.";
+    E236 => "bad SLC address",
+        "The operand is not an SLC-500 address (`N7:15`, `T4:7.ACC`, `B3:64/15`, `B3/18`, `I:1/1`, `O:3/2`, `S:1/15`, `F8:2`) nor a symbol of the table; the message says why (file type and number, element 0-255, bit 0-15, slot 0-30, a named sub-element of the element's type). Indexed (`#N7:0`) and indirect (`N7:[N7:0]`) addresses are not implemented yet.";
+    E237 => "program file structure",
+        "A `LAD n` line is wrong or repeated, the project has no program file 2, a JSR names a missing file or recurses (the SLC has no recursion) or nests deeper than 8, a JMP has no LBL of its number in its file, a label is defined twice, LBL is not the first instruction of its rung, or SBR is not the first instruction of a subroutine.";
+    E238 => "bad table line",
+        "A `SYM ADDRESS NAME [\"description\"]` or `DATA FILE ELEMENTS [= values]` line is malformed: a symbol defined twice or spelled like an address, file or instruction; a data file declared twice, of the wrong type for its number, with 0 or too many elements or initial values.";
+
     // ---- projects, plants and scenarios (automat-project, automat-scenario) ----
     E300 => "invalid project file",
         "`automat.toml` is not valid TOML, or a key has the wrong type or is unknown. The project file has the tables `[project]` (name, description, sources, program, cycle_time), `[plant]` (model, seed), `[plant.params]`, `[bind]`, `[tasks.NAME]` (watchdog, sensitivity; NAME a task of the program, see docs/watchdog.md), `[retain]`, `[safe_state]`, `[users.NAME]`, `[modbus]` (see docs/modbus.md), `[opcua]` (see docs/opcua.md) and `[runtime]` (realtime, priority 1 to 99, cpus such as `1` or `0,2-3`; see docs/realtime.md).";

@@ -41,11 +41,12 @@ pub fn collect(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
     Ok(out)
 }
 
-fn is_source(path: &Path) -> bool {
+pub fn is_source(path: &Path) -> bool {
     path.extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| SOURCE_EXTENSIONS.iter().any(|x| x.eq_ignore_ascii_case(e)))
         || automat_dialect::is_fst_file(&path.to_string_lossy())
+        || automat_dialect::is_slc_file(&path.to_string_lossy())
         || automat_dialect::is_export_file(&path.to_string_lossy())
 }
 

@@ -25,6 +25,7 @@ macro_rules! eprintln {
 }
 
 mod cmd_check;
+mod cmd_corpus;
 mod cmd_explain;
 mod cmd_export;
 mod cmd_online;
@@ -32,6 +33,7 @@ mod cmd_passwd;
 mod cmd_plant;
 mod cmd_run;
 mod cmd_test;
+mod corpus;
 mod draw;
 mod engines;
 mod files;
@@ -61,6 +63,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     Check(cmd_check::CheckArgs),
+    Corpus(cmd_corpus::CorpusArgs),
     Explain(cmd_explain::ExplainArgs),
     Export(cmd_export::ExportArgs),
     // Boxed: by far the largest set of flags.
@@ -92,6 +95,7 @@ fn main() -> ExitCode {
     };
     let outcome = match cli.command {
         Command::Check(args) => cmd_check::run(&args),
+        Command::Corpus(args) => cmd_corpus::run(&args),
         Command::Explain(args) => cmd_explain::run(&args),
         Command::Export(args) => cmd_export::run(&args),
         Command::Run(args) => cmd_run::run_cmd(&args),

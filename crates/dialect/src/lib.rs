@@ -41,6 +41,7 @@ mod fst;
 mod pl7;
 mod pragma;
 mod sections;
+mod slc;
 mod timer;
 mod walk;
 
@@ -116,6 +117,12 @@ pub fn is_fst_file(name: &str) -> bool {
     fst::is_fst_file(name)
 }
 
+/// Is `name` an Allen-Bradley SLC-500 ladder file (`*.slc`), read by the
+/// SLC front end whatever the project's libraries?
+pub fn is_slc_file(name: &str) -> bool {
+    slc::is_slc_file(name)
+}
+
 /// Is `name` a CODESYS V2.3 text export (`*.exp`), read as Structured
 /// Text when a folder is given (the `(* @... *)` markers are comments)?
 pub fn is_export_file(name: &str) -> bool {
@@ -150,6 +157,9 @@ pub fn parse_names<S: AsRef<str>>(names: &[S]) -> Result<Vec<Dialect>, String> {
 /// generated from the project's STL files (when they have no error: their
 /// diagnostics come from [`check_sources`]).
 pub fn add_libraries(map: &mut SourceMap, dialects: &[Dialect]) {
+    if let (Some(text), _) = slc::translate(map) {
+        map.add(slc::GENERATED, text);
+    }
     if dialects.contains(&Dialect::Fst) {
         if let (Some(text), _) = fst::translate(map) {
             map.add(fst::GENERATED, text);
@@ -189,7 +199,7 @@ pub fn parse_as_written(
         let lib = dialects
             .iter()
             .any(|d| d.library_file() == Some(file.name.as_str()));
-        if lib || (fst && fst::is_fst_file(&file.name)) {
+        if lib || (fst && fst::is_fst_file(&file.name)) || slc::is_slc_file(&file.name) {
             units.push(SourceUnit {
                 file: id,
                 items: Vec::new(),
@@ -227,7 +237,8 @@ pub fn check_sources(
     let xml = sources
         .files()
         .any(|(_, f)| automat_plcopen::is_plcopen_file(&f.name));
-    if dialects.is_empty() && !xml {
+    let has_slc = sources.files().any(|(_, f)| slc::is_slc_file(&f.name));
+    if dialects.is_empty() && !xml && !has_slc {
         return automat_sema::check_sources(sources, interner);
     }
     let mut units = Vec::with_capacity(sources.len());
@@ -246,8 +257,11 @@ pub fn check_sources(
     if fst {
         diags.extend(fst::translate(sources).1);
     }
+    if has_slc {
+        diags.extend(slc::translate(sources).1);
+    }
     for (id, file) in sources.files() {
-        if fst && fst::is_fst_file(&file.name) {
+        if (fst && fst::is_fst_file(&file.name)) || slc::is_slc_file(&file.name) {
             units.push(SourceUnit {
                 file: id,
                 items: Vec::new(),

@@ -10,10 +10,12 @@
 //! generated text (`out.rs`), which the ST parser parses (so IL bodies are
 //! desugared as in `.il` files, and a malformed expression gets the ST
 //! parser's message); every span of the tree and of the diagnostics is then
-//! moved back to the XML bytes it came from (`remap.rs`). LD and FBD bodies
-//! are read into the graphical network model of [`graph`] and lowered to
-//! ST statements in their execution order (`graph/lower.rs` states the
-//! rules).
+//! moved back to the XML bytes it came from. LD and FBD bodies are read
+//! (`graph.rs`) into the syntax layer's graphical network model
+//! (`automat_syntax::graphic`), which lowers them to ST statements in their
+//! execution order; the generated text, its span map and the parsing back
+//! are the syntax layer's too (`graphic::Generated`,
+//! `graphic::parse_generated`), shared with the other graphical front ends.
 //!
 //! Invariants: never panics on any input; every diagnostic has a code
 //! (E170–E177 for the importer's own) and a span in the XML file; names
@@ -24,20 +26,17 @@
 mod config;
 mod decl;
 mod export;
-pub mod graph;
+mod graph;
 mod names;
-pub(crate) mod out;
 mod pou;
-mod remap;
 mod sfc;
 pub mod sheet;
 pub mod xml;
 
 use automat_base::{Code, Diagnostic, FileId, Interner, Span};
-use automat_syntax::ast::{Body, Expr, ExprKind, Item, SourceUnit, Stmt, StmtKind};
+use automat_syntax::graphic::Generated as Out;
 use automat_syntax::Parsed;
 pub use export::export;
-use out::Out;
 use roxmltree::{Document, Node, ParsingOptions};
 
 /// Whether a source file is read by this importer (by its name).
@@ -63,8 +62,8 @@ pub fn generated_st(file: FileId, src: &str) -> (String, Vec<Diagnostic>) {
 pub fn import(file: FileId, src: &str, interner: &mut Interner) -> Parsed {
     let imp = generate(file, src);
     let Imp { out, diags, .. } = imp;
-    let parsed = automat_syntax::parse(file, &out.text, interner);
-    finish(file, out, diags, parsed, interner)
+    let opts = automat_syntax::Options::default();
+    automat_syntax::graphic::parse_generated(file, &out, diags, interner, opts)
 }
 
 fn generate<'s>(file: FileId, src: &'s str) -> Imp<'s> {
@@ -94,42 +93,6 @@ fn generate<'s>(file: FileId, src: &'s str) -> Imp<'s> {
     imp
 }
 
-fn finish(
-    file: FileId,
-    out: Out,
-    mut diags: Vec<Diagnostic>,
-    parsed: Parsed,
-    interner: &mut Interner,
-) -> Parsed {
-    let remap = remap::Remap { out: &out };
-    let mut unit = parsed.unit;
-    for item in &mut unit.items {
-        remap.item(item);
-    }
-    let jumps = Jumps {
-        goto: interner.intern(graph::lower::GOTO_MARK),
-        label: interner.intern(graph::lower::LABEL_MARK),
-    };
-    for item in &mut unit.items {
-        if let Item::Pou(p) = item {
-            let Body::St(stmts) = &mut p.body;
-            jumps.rewrite(stmts);
-        }
-    }
-    for mut d in parsed.diagnostics {
-        remap.diag(&mut d);
-        diags.push(d);
-    }
-    diags.sort_by_key(|d| d.span.start);
-    Parsed {
-        unit: SourceUnit {
-            file,
-            items: unit.items,
-        },
-        diagnostics: diags,
-    }
-}
-
 /// The byte offset of a 1-based row and column (as `roxmltree` reports).
 fn offset_of(src: &str, row: u32, col: u32) -> u32 {
     let mut off = 0usize;
@@ -143,55 +106,6 @@ fn offset_of(src: &str, row: u32, col: u32) -> u32 {
         off += line.len();
     }
     src.len() as u32
-}
-
-/// Graphical jumps and labels are written as marker assignments
-/// (`__PLCOPEN_GOTO := L;`) because ST has no jump syntax; they become the
-/// internal `Goto`/`Label` statements here, which the checker verifies
-/// (E105–E107) and lowering compiles as IL jumps.
-struct Jumps {
-    goto: automat_base::Symbol,
-    label: automat_base::Symbol,
-}
-
-impl Jumps {
-    fn rewrite(&self, stmts: &mut [Stmt]) {
-        for s in stmts {
-            let marker = match &s.kind {
-                StmtKind::Assign {
-                    target:
-                        Expr {
-                            kind: ExprKind::Name(t),
-                            ..
-                        },
-                    value:
-                        Expr {
-                            kind: ExprKind::Name(v),
-                            ..
-                        },
-                } if t.sym == self.goto || t.sym == self.label => Some((t.sym == self.goto, *v)),
-                _ => None,
-            };
-            match marker {
-                Some((true, l)) => s.kind = StmtKind::Goto(l),
-                Some((false, l)) => s.kind = StmtKind::Label(l),
-                None => {
-                    if let StmtKind::If {
-                        branches,
-                        else_body,
-                    } = &mut s.kind
-                    {
-                        for b in branches {
-                            self.rewrite(&mut b.body);
-                        }
-                        if let Some(e) = else_body {
-                            self.rewrite(e);
-                        }
-                    }
-                }
-            }
-        }
-    }
 }
 
 /// The importer's state for one file.

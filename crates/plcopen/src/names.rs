@@ -6,14 +6,7 @@ use crate::Imp;
 use automat_base::Code;
 use roxmltree::Node;
 
-/// An IEC 61131-3 identifier: a letter or `_`, then letters, digits, `_`.
-pub fn is_identifier(s: &str) -> bool {
-    let mut chars = s.chars();
-    chars
-        .next()
-        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
-        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
-}
+pub use automat_syntax::graphic::is_identifier;
 
 impl Imp<'_> {
     /// The identifier in attribute `attr` of `n`, or an error naming `what`.

@@ -71,7 +71,7 @@ impl Imp<'_> {
             }
         }
         let pou_name = name.text.clone();
-        let mut ctx = crate::graph::lower::PouCtx::new(&pou_name, kw == "FUNCTION");
+        let mut ctx = automat_syntax::graphic::PouCtx::new(&pou_name, kw == "FUNCTION");
         let sfc = xml::child(p, "body")
             .and_then(|b| xml::child(b, "SFC"))
             .is_some();
@@ -105,7 +105,7 @@ impl Imp<'_> {
     }
 
     /// A `<body>`: ST and IL copied as written, LD and FBD lowered.
-    fn body(&mut self, body: Node, ctx: &mut crate::graph::lower::PouCtx) {
+    fn body(&mut self, body: Node, ctx: &mut automat_syntax::graphic::PouCtx) {
         let Some(lang) = xml::elements(body)
             .find(|e| e.tag_name().name() != "documentation" && e.tag_name().name() != "addData")
         else {
@@ -119,8 +119,10 @@ impl Imp<'_> {
                 self.gen("\n", lang);
             }
             "LD" | "FBD" => {
-                let net = crate::graph::read::network(self, lang, ctx.pou());
-                crate::graph::lower::lower(self, &net, ctx);
+                let net = crate::graph::network(self, lang, ctx.pou());
+                let lowered = automat_syntax::graphic::lower(&net, ctx);
+                self.diags.extend(lowered.diagnostics.iter().cloned());
+                lowered.write(&mut self.out);
             }
             other => {
                 let sp = self.span(lang);

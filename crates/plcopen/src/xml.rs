@@ -6,34 +6,9 @@
 use automat_base::{FileId, Span};
 use roxmltree::Node;
 
-/// Decoded text and, for each byte of it (plus one for its end), the
-/// offset in the XML file it came from.
-#[derive(Clone, Debug, Default)]
-pub struct Text {
-    pub text: String,
-    pub raw: Vec<u32>,
-}
-
-impl Text {
-    pub fn trimmed(&self) -> Text {
-        let start = self.text.len() - self.text.trim_start().len();
-        let end = self.text.trim_end().len().max(start);
-        Text {
-            text: self.text.get(start..end).unwrap_or("").to_string(),
-            raw: self
-                .raw
-                .get(start..=end)
-                .map(<[u32]>::to_vec)
-                .unwrap_or_default(),
-        }
-    }
-
-    pub fn span(&self, file: FileId) -> Span {
-        let s = self.raw.first().copied().unwrap_or(0);
-        let e = self.raw.last().copied().unwrap_or(s);
-        Span::new(file, s, e.max(s))
-    }
-}
+/// Decoded text with the XML offset of each byte: the syntax layer's
+/// graphical text, so what is read here goes into the network model as is.
+pub use automat_syntax::graphic::Text;
 
 /// Decodes the raw XML `raw` found at offset `base`: entities, CDATA
 /// sections; comments and markup are dropped.

@@ -742,6 +742,7 @@ fn task_spec(
 
 /// A source file: `*.st`, PLCopen TC6 XML (`*.xml`), or a file of the FST
 /// dialect (`*.stl`, `allocation.txt`), which is read only with `libraries = ["fst"]`,
+/// an Allen-Bradley SLC-500 ladder file (`*.slc`),
 /// or a CODESYS V2.3 text export (`*.exp`).
 fn is_st(p: &Path) -> bool {
     p.extension()
@@ -749,6 +750,7 @@ fn is_st(p: &Path) -> bool {
         // PLCopen TC6 XML sources sit beside the ST ones.
         .is_some_and(|e| e.eq_ignore_ascii_case("st") || e.eq_ignore_ascii_case("xml"))
         || automat_dialect::is_fst_file(&p.to_string_lossy())
+        || automat_dialect::is_slc_file(&p.to_string_lossy())
         || automat_dialect::is_export_file(&p.to_string_lossy())
 }
 

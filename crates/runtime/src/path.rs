@@ -12,6 +12,11 @@
 //! program has exactly one program instance, a path is first tried inside
 //! it (`x` is `MAIN.x`, as the program itself sees it), then as given.
 //!
+//! An Allen-Bradley SLC-500 address (`N7:15`, `T4:0.ACC`, `B3/18`,
+//! `I:1/1`: `automat_base::slc::looks_like`) is read as the word or bit of
+//! the data-file array it names (`N7[15]`, `T4[2]`, `B3[1].2`, `I1[8].1`),
+//! the globals the SLC front end generates.
+//!
 //! Direct addresses follow the CODESYS/OpenPLC convention that lowering uses
 //! (`automat_lower::layout::address_offset`): the number of a sized address
 //! counts units of its size, so `%QW2` is output bytes 4 and 5
@@ -97,6 +102,14 @@ pub fn resolve_access(program: &Program, text: &str) -> Result<Access, String> {
             generated: None,
             bounds: None,
         }
+    } else if automat_base::slc::looks_like(t) {
+        // An SLC-500 address (`N7:15`, `T4:0/DN`, `I:1/1`) names a word or
+        // bit of the data-file arrays the SLC front end generates.
+        let path = automat_base::slc::st_path(t)?;
+        let sels = parse(&path)?;
+        walk_path(program, t, &sels).map_err(|e| {
+            format!("{e} (`{t}` is the SLC address of `{path}`: is this an SLC-500 program?)")
+        })?
     } else {
         let sels = parse(t)?;
         walk_path(program, t, &sels)?

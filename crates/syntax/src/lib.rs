@@ -27,6 +27,7 @@
 
 pub mod ast;
 mod desugar;
+pub mod graphic;
 pub mod lexer;
 mod literal;
 mod parser;

@@ -16,11 +16,27 @@ use std::rc::Rc;
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
-/// Parses, checks and lowers one file; the error is the rendered diagnostics.
-fn compile(name: &str, text: &str, spec: &Spec) -> Result<Program, String> {
+/// What a case is checked with besides its own text: the other files of
+/// its project (a library the case exercises, `automat corpus`) and
+/// dialects beside its header's `libraries:`. Empty for a plain case.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Context<'a> {
+    /// (file name, text) of each other source file.
+    pub files: &'a [(String, String)],
+    pub libraries: &'a [String],
+}
+
+/// Parses, checks and lowers one file (with its context); the error is the
+/// rendered diagnostics.
+fn compile(name: &str, text: &str, spec: &Spec, ctx: Context) -> Result<Program, String> {
     let mut map = SourceMap::new();
     map.add(name, text);
-    let dialects = automat_dialect::parse_names(&spec.libraries)?;
+    for (n, t) in ctx.files {
+        map.add(n.as_str(), t.as_str());
+    }
+    let mut names = spec.libraries.clone();
+    names.extend(ctx.libraries.iter().cloned());
+    let dialects = automat_dialect::parse_names(&names)?;
     automat_dialect::add_libraries(&mut map, &dialects);
     let mut interner = Interner::new();
     let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &dialects);
@@ -81,7 +97,18 @@ pub fn check_on(
     spec: &Spec,
     backend: Backend,
 ) -> Result<Vec<String>, String> {
-    let program = compile(name, text, spec)?;
+    check_in(name, text, spec, backend, Context::default())
+}
+
+/// Runs a case on `backend` together with its [`Context`].
+pub fn check_in(
+    name: &str,
+    text: &str,
+    spec: &Spec,
+    backend: Backend,
+    ctx: Context,
+) -> Result<Vec<String>, String> {
+    let program = compile(name, text, spec, ctx)?;
     match backend {
         Backend::Interp => {
             let mut engine = Engine::new(program);

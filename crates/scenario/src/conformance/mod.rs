@@ -44,7 +44,7 @@
 pub mod exec;
 pub mod spec;
 
-pub use exec::{check, check_on, Backend};
+pub use exec::{check, check_in, check_on, Backend, Context};
 
 /// What one case comes to.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -116,8 +116,13 @@ pub fn verdict(name: &str, spec: &spec::Spec, result: &Result<Vec<String>, Strin
 /// Parses, runs on `backend` and classifies the case `name` (the file name
 /// used in fault sites and messages) whose text is `source`.
 pub fn judge(name: &str, source: &str, backend: Backend) -> Verdict {
+    judge_in(name, source, backend, Context::default())
+}
+
+/// [`judge`] with the other files and dialects of the case's project.
+pub fn judge_in(name: &str, source: &str, backend: Backend, ctx: Context) -> Verdict {
     match spec::parse(source) {
-        Ok(s) => verdict(name, &s, &check_on(name, source, &s, backend)),
+        Ok(s) => verdict(name, &s, &check_in(name, source, &s, backend, ctx)),
         Err(e) => Verdict::Failed(format!("{name}: bad header: {e}")),
     }
 }

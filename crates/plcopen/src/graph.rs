@@ -1,9 +1,10 @@
-//! TC6 XML `<LD>` / `<FBD>` bodies into the network model.
+//! TC6 XML `<LD>` / `<FBD>` bodies into the syntax layer's graphical
+//! network model (`automat_syntax::graphic`), which lowers them.
 
-use super::model::*;
 use crate::xml;
 use crate::Imp;
 use automat_base::Code;
+use automat_syntax::graphic::model::*;
 use roxmltree::Node;
 
 fn edge(n: Node) -> EdgeKind {

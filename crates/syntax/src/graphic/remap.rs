@@ -1,15 +1,15 @@
 //! Moves every span of a parsed tree (and of its diagnostics) from the
-//! generated text into the XML file (see `out.rs`). One function per node
+//! generated text into the source file (see `generated.rs`). One function per node
 //! type; every `Span` field is visited.
 
-use crate::out::Out;
+use super::generated::Generated;
+use crate::ast::il::{IlBody, Instr, InstrKind};
+use crate::ast::sfc::{ActionBody, Chart, Condition};
+use crate::ast::*;
 use automat_base::{Diagnostic, Span};
-use automat_syntax::ast::il::{IlBody, Instr, InstrKind};
-use automat_syntax::ast::sfc::{ActionBody, Chart, Condition};
-use automat_syntax::ast::*;
 
 pub struct Remap<'a> {
-    pub out: &'a Out,
+    pub out: &'a Generated,
 }
 
 impl Remap<'_> {
@@ -44,7 +44,7 @@ impl Remap<'_> {
             }
             Item::Globals(b) => self.block(b),
             Item::Config(c) => self.config(c),
-            // The TC6 importer builds no object-oriented items.
+            // The graphical front ends generate no object-oriented items.
             Item::Class(_) | Item::Interface(_) => {}
         }
     }

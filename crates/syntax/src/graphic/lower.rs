@@ -30,15 +30,13 @@
 //! E174: feedback goes through a variable (the reader sees the value of the
 //! previous write).
 
+use super::generated::Generated;
 use super::model::*;
-use crate::xml::Text;
-use crate::Imp;
-use automat_base::{Code, Span};
+use super::text::Text;
+use automat_base::{Code, Diagnostic, Span};
 use std::collections::HashMap;
 
-/// Marker assignments the importer turns into jumps and labels.
-pub const GOTO_MARK: &str = "__PLCOPEN_GOTO";
-pub const LABEL_MARK: &str = "__PLCOPEN_LABEL";
+pub use super::jumps::{GOTO_MARK, LABEL_MARK};
 
 /// Blocks of one vendor's tool that are not IEC 61131-3 blocks.
 const VENDOR_BLOCKS: &[(&str, &str)] = &[
@@ -47,16 +45,25 @@ const VENDOR_BLOCKS: &[(&str, &str)] = &[
     ("python_gear", "Beremiz"),
 ];
 
-/// Where a body is being lowered: its POU (for messages).
+/// Where a body is being lowered: its POU and what its element ids are
+/// called (both for messages: "POU `P`, localId 7: ...").
 pub struct PouCtx {
     name: String,
+    id_word: String,
 }
 
 impl PouCtx {
     pub fn new(name: &str, _function: bool) -> PouCtx {
         PouCtx {
             name: name.to_string(),
+            id_word: "localId".to_string(),
         }
+    }
+
+    /// Messages name an element as `{word} {id}` (default `localId`).
+    pub fn with_id_word(mut self, word: &str) -> PouCtx {
+        self.id_word = word.to_string();
+        self
     }
 
     pub fn pou(&self) -> &str {
@@ -64,14 +71,72 @@ impl PouCtx {
     }
 }
 
-enum Piece {
+/// A piece of the generated Structured Text: words the lowering writes
+/// (standing for the span of the element they come from) or text copied
+/// from an element (mapped byte for byte).
+#[derive(Clone, Debug)]
+pub enum Piece {
     Gen(String, Span),
     Copy(Text),
+}
+
+/// A lowered network: the hidden BOOLs it needs (`__ld_n<id>` power flows,
+/// `__ld_m<id>` edge memories, `__ld_eno<id>` …), its statements in
+/// execution order, and what is wrong with it (E171–E177).
+#[derive(Clone, Debug)]
+pub struct Lowered {
+    pub hidden: Vec<String>,
+    pub statements: Vec<Piece>,
+    pub diagnostics: Vec<Diagnostic>,
+    /// Where the declarations of the hidden variables stand (the start of
+    /// the first element).
+    pub at: Span,
+}
+
+impl Lowered {
+    /// `VAR <hidden> : BOOL; ... END_VAR` (nothing when there is none), to
+    /// go after the POU's own declarations.
+    pub fn write_vars(&self, out: &mut Generated) {
+        if self.hidden.is_empty() {
+            return;
+        }
+        out.gen("\nVAR\n", self.at);
+        for h in &self.hidden {
+            out.gen(&format!("{h} : BOOL;\n"), self.at);
+        }
+        out.gen("END_VAR\n", self.at);
+    }
+
+    /// The statements, one per line.
+    pub fn write_statements(&self, out: &mut Generated) {
+        for p in &self.statements {
+            match p {
+                Piece::Gen(s, sp) => out.gen(s, *sp),
+                Piece::Copy(t) => out.copy(t),
+            }
+        }
+    }
+
+    /// The hidden declarations, an empty line, then the statements: the
+    /// body of a POU whose declarations were written before.
+    pub fn write(&self, out: &mut Generated) {
+        self.write_vars(out);
+        out.gen("\n", self.at);
+        self.write_statements(out);
+    }
+
+    /// The statements as plain text (for looking at what a network means).
+    pub fn statements_text(&self) -> String {
+        let mut g = Generated::default();
+        self.write_statements(&mut g);
+        g.text
+    }
 }
 
 struct L<'n> {
     net: &'n Network,
     pou: String,
+    id_word: String,
     by_id: HashMap<u32, usize>,
     connectors: HashMap<String, usize>,
     /// Function blocks whose ENO some element reads.
@@ -108,7 +173,7 @@ impl<'n> L<'n> {
         self.diags.push((
             code,
             span,
-            format!("POU `{}`, localId {}: {msg}", self.pou, el.id),
+            format!("POU `{}`, {} {}: {msg}", self.pou, self.id_word, el.id),
         ));
     }
 
@@ -396,7 +461,7 @@ impl<'n> L<'n> {
                 }
                 continue;
             }
-            if !crate::names::is_identifier(&formal) {
+            if !super::is_identifier(&formal) {
                 self.err(
                     Code::E177,
                     p.span,
@@ -717,12 +782,14 @@ impl<'n> L<'n> {
     }
 }
 
-/// Writes the network's hidden variables and statements.
-pub(crate) fn lower(imp: &mut Imp, net: &Network, ctx: &mut PouCtx) {
+/// Lowers a network to its hidden variables and statements (never panics:
+/// what is wrong is in [`Lowered::diagnostics`]).
+pub fn lower(net: &Network, ctx: &PouCtx) -> Lowered {
     let n = net.elements.len();
     let mut l = L {
         net,
         pou: ctx.pou().to_string(),
+        id_word: ctx.id_word.clone(),
         by_id: HashMap::new(),
         connectors: HashMap::new(),
         eno_read: vec![false; n],
@@ -767,27 +834,19 @@ pub(crate) fn lower(imp: &mut Imp, net: &Network, ctx: &mut PouCtx) {
     for i in order {
         l.statement(&mut body, i);
     }
-    for (code, span, msg) in std::mem::take(&mut l.diags) {
-        imp.error(code, span, msg);
-    }
+    let diagnostics = std::mem::take(&mut l.diags)
+        .into_iter()
+        .map(|(code, span, msg)| Diagnostic::error(code, span, msg))
+        .collect();
     let mut hidden = std::mem::take(&mut l.hidden);
     hidden.sort();
     hidden.dedup();
     let at = net.elements.first().map_or(Span::default(), |e| e.span);
-    let at = Span::new(imp.file, at.start, at.start);
-    if !hidden.is_empty() {
-        imp.out.gen("\nVAR\n", at);
-        for h in &hidden {
-            imp.out.gen(&format!("{h} : BOOL;\n"), at);
-        }
-        imp.out.gen("END_VAR\n", at);
-    }
-    imp.out.gen("\n", at);
-    for p in body {
-        match p {
-            Piece::Gen(s, sp) => imp.out.gen(&s, sp),
-            Piece::Copy(t) => imp.out.copy(&t),
-        }
+    Lowered {
+        hidden,
+        statements: body,
+        diagnostics,
+        at: Span::new(at.file, at.start, at.start),
     }
 }
 

@@ -1,6 +1,15 @@
-//! Elements and connections of an LD or FBD body.
+//! Elements and connections of an LD or FBD body, whatever file it was
+//! read from.
+//!
+//! An element is known by its `id` (PLCopen's `localId`; any number unique
+//! in the network for another front end) and placed at `(x, y)`: the
+//! position decides the order of what the wires leave free (rungs from the
+//! top, then top to bottom, left to right; see `lower.rs`), so a front end
+//! without a drawing gives each rung a growing `y` and each element of a
+//! rung a growing `x` ([`super::build::Builder`] does). Texts carry their
+//! own source offsets ([`Text`]), spans point at the element in its file.
 
-use crate::xml::Text;
+use super::text::Text;
 use automat_base::Span;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,0 +1,638 @@
+//! Rungs → Structured Text. Each rung evaluates its rung condition `__rc`
+//! from left to right: an input instruction ANDs its test into it, an
+//! output instruction acts on it and leaves it; a branch saves the
+//! condition at `BST` (`__bs[d]`), starts each leg from it and ORs the legs
+//! at `BND` (`__bo[d]`). A rung starts from `__mcr` (TRUE outside a false
+//! MCR zone). A subroutine is inlined at its JSR (its branch slots 16
+//! higher, so a JSR inside a branch keeps the caller's). A file with JMP,
+//! LBL, RET or TND runs as segments, one per LBL, in a loop over the
+//! segment number: a jump sets the next segment and skips the rest of the
+//! segment after its rung.
+
+use super::layout::{real, Layout};
+use super::parse::{Elem, Ins, Operand, Project, Rung};
+use automat_base::slc::{Address, FileType};
+use automat_base::{Code, Diagnostic, Span};
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write;
+
+/// Branches nested in one rung.
+const MAX_BRANCH: usize = 16;
+/// Subroutine calls nested (the SLC 5/03 and later allow 8).
+const MAX_CALLS: usize = 8;
+
+pub struct Emitter<'a> {
+    p: &'a Project,
+    layout: &'a mut Layout,
+    pub diags: Vec<Diagnostic>,
+    /// The files being inlined (a file calling itself is refused).
+    stack: Vec<u32>,
+    /// Segment loops generated so far (each has its `__pcN`, `__jN`).
+    loops: u32,
+    /// A remainder slot per timer element: (file, word index) → slot.
+    rems: BTreeMap<(u32, u32), usize>,
+}
+
+/// Where the rungs of one inlined file run.
+struct Level {
+    /// The segment loop's number, when the file has one.
+    seg: Option<u32>,
+    /// The first branch slot.
+    base: usize,
+    /// Label number → segment.
+    labels: BTreeMap<u32, usize>,
+}
+
+fn place(a: Address) -> String {
+    a.st_path().unwrap_or_default()
+}
+
+fn is_real(o: &Operand) -> bool {
+    match o {
+        Operand::Real(_) => true,
+        Operand::Addr(a) => a.ty == FileType::F,
+        _ => false,
+    }
+}
+
+/// An integer operand as INT text.
+fn int(o: &Operand) -> String {
+    match o {
+        Operand::Addr(a) => place(*a),
+        Operand::Int(v) => v.to_string(),
+        _ => "0".into(),
+    }
+}
+
+fn dint(o: &Operand) -> String {
+    match o {
+        Operand::Addr(_) => format!("INT_TO_DINT({})", int(o)),
+        _ => int(o),
+    }
+}
+
+fn lreal(o: &Operand) -> String {
+    match o {
+        Operand::Addr(a) if a.ty == FileType::F => format!("REAL_TO_LREAL({})", place(*a)),
+        Operand::Addr(a) => format!("INT_TO_LREAL({})", place(*a)),
+        Operand::Int(v) => format!("{v}.0"),
+        Operand::Real(v) => real(*v),
+        _ => "0.0".into(),
+    }
+}
+
+fn addr(o: &Operand) -> Address {
+    match o {
+        Operand::Addr(a) => *a,
+        _ => Address {
+            ty: FileType::N,
+            file: 7,
+            elem: 0,
+            part: automat_base::slc::Part::Element,
+        },
+    }
+}
+
+impl<'a> Emitter<'a> {
+    pub fn new(p: &'a Project, layout: &'a mut Layout) -> Emitter<'a> {
+        Emitter {
+            p,
+            layout,
+            diags: Vec::new(),
+            stack: Vec::new(),
+            loops: 0,
+            rems: BTreeMap::new(),
+        }
+    }
+
+    fn err(&mut self, code: Code, span: Span, msg: String) {
+        self.diags.push(Diagnostic::error(code, span, msg));
+    }
+
+    /// The PROGRAM `SLC`.
+    pub fn program(&mut self) -> String {
+        let main = if self.p.files.contains_key(&2) {
+            self.file(2, 0)
+        } else {
+            String::new()
+        };
+        // Files no JSR reaches are still checked.
+        for n in self
+            .p
+            .files
+            .keys()
+            .copied()
+            .filter(|&n| n != 2)
+            .collect::<Vec<_>>()
+        {
+            let _ = self.file(n, 1);
+        }
+        // A file inlined at several JSRs reports its errors once.
+        let mut seen = BTreeSet::new();
+        self.diags
+            .retain(|d| seen.insert((d.span.file, d.span.start, d.span.end, d.code)));
+        let mut s = String::from("PROGRAM SLC\nVAR_EXTERNAL\n");
+        for (n, f) in &self.layout.files {
+            let ty = if f.ty == FileType::F { "REAL" } else { "INT" };
+            let len = if f.ty == FileType::F {
+                f.elements
+            } else if matches!(f.ty, FileType::I | FileType::O) {
+                f.elements * automat_base::slc::IO_SLOT_WORDS
+            } else {
+                f.elements * f.ty.words()
+            };
+            let _ = writeln!(
+                s,
+                "    {}{n} : ARRAY[0..{}] OF {ty};",
+                f.ty.letter(),
+                len - 1
+            );
+        }
+        s.push_str("    __slc_started : BOOL;\n    __slc_last : LINT;\n    __slc_fault : __SLC_MAJOR_FAULT;\nEND_VAR\nVAR\n");
+        let _ = writeln!(
+            s,
+            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;",
+            MAX_BRANCH * (MAX_CALLS + 1) - 1,
+            self.rems.len().max(1) - 1
+        );
+        for k in 0..self.loops {
+            let _ = writeln!(s, "    __pc{k} : INT;\n    __j{k} : BOOL;");
+        }
+        s.push_str("END_VAR\n");
+        s.push_str("    __now := TIME_TO_LINT(__SCAN_TIME());\n    IF __slc_started THEN __d := LINT_TO_DINT(__now - __slc_last); ELSE __d := 0; END_IF;\n    __slc_last := __now;\n    (* S:1/15 first pass *)\n    S2[1].15 := NOT __slc_started;\n    __mcr := TRUE;\n    __tnd := FALSE;\n");
+        s.push_str(&main);
+        s.push_str("    __slc_started := TRUE;\n    (* S:5/0 overflow trap set at the end of the scan: a major fault *)\n    IF S2[5].0 THEN __slc_fault := BOOL_TO_INT(S2[5].0); END_IF;\nEND_PROGRAM\n");
+        s
+    }
+
+    fn has(&self, n: u32, names: &[&str]) -> bool {
+        self.p.files.get(&n).is_some_and(|f| {
+            f.rungs
+                .iter()
+                .flat_map(|r| &r.elems)
+                .any(|e| matches!(e, Elem::Ins(i) if names.contains(&i.mn)))
+        })
+    }
+
+    /// Does running file `n` possibly end the scan (TND in it or a file it
+    /// calls)?
+    fn ends_scan(&self, n: u32, seen: &mut BTreeSet<u32>) -> bool {
+        if !seen.insert(n) {
+            return false;
+        }
+        if self.has(n, &["TND"]) {
+            return true;
+        }
+        let called: Vec<u32> = self.p.files.get(&n).map_or(Vec::new(), |f| {
+            f.rungs
+                .iter()
+                .flat_map(|r| &r.elems)
+                .filter_map(|e| match e {
+                    Elem::Ins(i) if i.mn == "JSR" => match i.ops.first() {
+                        Some(Operand::Number(k)) => Some(*k),
+                        _ => None,
+                    },
+                    _ => None,
+                })
+                .collect()
+        });
+        called.into_iter().any(|k| self.ends_scan(k, seen))
+    }
+
+    /// The code of program file `n` at call depth `depth`.
+    fn file(&mut self, n: u32, depth: usize) -> String {
+        let p: &'a Project = self.p;
+        let Some(f) = p.files.get(&n) else {
+            return String::new();
+        };
+        let rungs: &'a [Rung] = &f.rungs;
+        let segmented =
+            self.has(n, &["JMP", "LBL", "RET", "TND"]) || self.ends_scan(n, &mut BTreeSet::new());
+        let mut level = Level {
+            seg: None,
+            base: depth * MAX_BRANCH,
+            labels: BTreeMap::new(),
+        };
+        // Segments start at rungs beginning with LBL.
+        let mut seg = 0usize;
+        for (r, rung) in rungs.iter().enumerate() {
+            for (k, e) in rung.elems.iter().enumerate() {
+                let Elem::Ins(i) = e else { continue };
+                match i.mn {
+                    "LBL" => {
+                        if k != 0 {
+                            self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `{}`: LBL is the first instruction of its rung", i.text));
+                            continue;
+                        }
+                        if r > 0 {
+                            seg += 1;
+                        }
+                        if let Some(Operand::Number(l)) = i.ops.first() {
+                            if level.labels.insert(*l, seg).is_some() {
+                                self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `{}`: label {l} is defined twice in this file", i.text));
+                            }
+                        }
+                    }
+                    "SBR" if n == 2 || r != 0 || k != 0 => {
+                        self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `SBR`: SBR is the first instruction of a subroutine file (3 to 255)"));
+                    }
+                    _ => {}
+                }
+            }
+        }
+        let mut s = String::new();
+        let u = if segmented {
+            let u = self.loops;
+            self.loops += 1;
+            level.seg = Some(u);
+            let _ = write!(s, "    __pc{u} := 0;\n    WHILE __pc{u} >= 0 DO\n    __j{u} := FALSE;\n    CASE __pc{u} OF\n    0:\n");
+            Some(u)
+        } else {
+            None
+        };
+        let mut seg = 0usize;
+        for (r, rung) in rungs.iter().enumerate() {
+            let starts = matches!(rung.elems.first(), Some(Elem::Ins(i)) if i.mn == "LBL");
+            let code = self.rung(n, r, rung, &level);
+            match u {
+                Some(u) if starts && r > 0 => {
+                    seg += 1;
+                    let _ = write!(
+                        s,
+                        "    IF NOT __j{u} THEN __pc{u} := {seg}; END_IF;\n    {seg}:\n{code}"
+                    );
+                }
+                Some(u) if r > 0 => {
+                    let _ = write!(s, "    IF NOT __j{u} THEN\n{code}    END_IF;\n");
+                }
+                _ => s.push_str(&code),
+            }
+        }
+        if let Some(u) = u {
+            let _ = write!(
+                s,
+                "    IF NOT __j{u} THEN __pc{u} := -1; END_IF;\n    END_CASE;\n    END_WHILE;\n"
+            );
+        }
+        s
+    }
+
+    fn rung(&mut self, n: u32, r: usize, rung: &Rung, level: &Level) -> String {
+        let mut s = String::new();
+        let comment = rung
+            .comment
+            .as_deref()
+            .map(|c| format!(": {}", c.replace("*)", "* )").replace("(*", "( *")))
+            .unwrap_or_default();
+        let _ = writeln!(s, "    (* LAD {n} rung {r}{comment} *)");
+        let mcr = rung
+            .elems
+            .iter()
+            .any(|e| matches!(e, Elem::Ins(i) if i.mn == "MCR"));
+        let _ = writeln!(s, "    __rc := {};", if mcr { "TRUE" } else { "__mcr" });
+        let mut depth = 0usize;
+        for e in &rung.elems {
+            match e {
+                Elem::Bst(span) => {
+                    if depth + 1 >= MAX_BRANCH {
+                        self.err(
+                            Code::E235,
+                            *span,
+                            format!(
+                                "LAD {n} rung {r}: branches nested deeper than {}",
+                                MAX_BRANCH - 1
+                            ),
+                        );
+                        return String::new();
+                    }
+                    depth += 1;
+                    let d = level.base + depth;
+                    let _ = writeln!(s, "    __bs[{d}] := __rc; __bo[{d}] := FALSE;");
+                }
+                Elem::Nxb(_) => {
+                    let d = level.base + depth;
+                    let _ = writeln!(s, "    __bo[{d}] := __bo[{d}] OR __rc; __rc := __bs[{d}];");
+                }
+                Elem::Bnd(_) => {
+                    let d = level.base + depth;
+                    let _ = writeln!(s, "    __rc := __bo[{d}] OR __rc;");
+                    depth = depth.saturating_sub(1);
+                }
+                Elem::Ins(i) => {
+                    let code = self.ins(n, r, i, level);
+                    s.push_str(&code);
+                }
+            }
+        }
+        s
+    }
+
+    fn ins(&mut self, n: u32, r: usize, i: &Ins, level: &Level) -> String {
+        let ops = &i.ops;
+        let op = |k: usize| ops.get(k).cloned().unwrap_or(Operand::Int(0));
+        let a0 = addr(&op(0));
+        let gate = |body: String| format!("    IF __rc THEN {body} END_IF;\n");
+        match i.mn {
+            "XIC" => format!("    __rc := __rc AND {};\n", place(a0)),
+            "XIO" => format!("    __rc := __rc AND NOT {};\n", place(a0)),
+            "OTE" => format!("    {} := __rc;\n", place(a0)),
+            "OTL" => gate(format!("{} := TRUE;", place(a0))),
+            "OTU" => gate(format!("{} := FALSE;", place(a0))),
+            "OSR" => {
+                let b = place(a0);
+                format!("    __t := __rc AND NOT {b}; {b} := __rc; __rc := __t;\n")
+            }
+            "TON" | "TOF" | "RTO" => {
+                let (base, pre, acc) = match (op(1), op(2), op(3)) {
+                    (Operand::Base(b), Operand::Int(p), Operand::Int(a)) => (b, p, a),
+                    _ => (10, 0, 0),
+                };
+                self.layout.preset(a0, 1, pre);
+                self.layout.preset(a0, 2, acc);
+                let k = self.rem(a0);
+                let (arr, ix) = (a0.array(), a0.index());
+                format!(
+                    "    __x := __SLC_{}(RUNG := __rc, BASE := {base}, D := __d, CTL := {arr}[{ix}], PRE := {arr}[{}], ACC := {arr}[{}], REM := __rem[{k}]);\n",
+                    i.mn,
+                    ix + 1,
+                    ix + 2
+                )
+            }
+            "CTU" | "CTD" => {
+                if let (Operand::Int(p), Operand::Int(a)) = (op(1), op(2)) {
+                    self.layout.preset(a0, 1, p);
+                    self.layout.preset(a0, 2, a);
+                }
+                let (arr, ix) = (a0.array(), a0.index());
+                format!(
+                    "    __x := __SLC_{}(RUNG := __rc, CTL := {arr}[{ix}], PRE := {arr}[{}], ACC := {arr}[{}]);\n",
+                    i.mn,
+                    ix + 1,
+                    ix + 2
+                )
+            }
+            "RES" => {
+                let (arr, ix) = (a0.array(), a0.index());
+                let bits: &[u32] = match a0.ty {
+                    FileType::T => &[15, 14, 13],
+                    FileType::C => &[15, 14, 13, 12, 11, 10],
+                    _ => &[15, 14, 13, 12, 11, 10, 9, 8],
+                };
+                let mut b: String = bits
+                    .iter()
+                    .map(|k| format!("{arr}[{ix}].{k} := FALSE; "))
+                    .collect();
+                let _ = write!(b, "{arr}[{}] := 0;", ix + 2);
+                if a0.ty == FileType::T {
+                    let k = self.rem(a0);
+                    let _ = write!(b, " __rem[{k}] := 0;");
+                }
+                gate(b)
+            }
+            "EQU" | "NEQ" | "LES" | "LEQ" | "GRT" | "GEQ" => {
+                let sym = match i.mn {
+                    "EQU" => "=",
+                    "NEQ" => "<>",
+                    "LES" => "<",
+                    "LEQ" => "<=",
+                    "GRT" => ">",
+                    _ => ">=",
+                };
+                let (a, b) = (op(0), op(1));
+                if is_real(&a) || is_real(&b) {
+                    format!(
+                        "    __rc := __rc AND ({} {sym} {});\n",
+                        lreal(&a),
+                        lreal(&b)
+                    )
+                } else {
+                    format!("    __rc := __rc AND ({} {sym} {});\n", dint(&a), dint(&b))
+                }
+            }
+            "LIM" => format!(
+                "    __rc := __rc AND __SLC_LIM({}, {}, {});\n",
+                lreal(&op(0)),
+                lreal(&op(1)),
+                lreal(&op(2))
+            ),
+            "MEQ" => {
+                if !self.ints(n, r, i, ops) {
+                    return String::new();
+                }
+                format!(
+                    "    __rc := __rc AND __SLC_MEQ({}, {}, {});\n",
+                    int(&op(0)),
+                    int(&op(1)),
+                    int(&op(2))
+                )
+            }
+            "ADD" | "SUB" | "MUL" | "DIV" => {
+                let (a, b) = (op(0), op(1));
+                let (ie, re, carry) = match i.mn {
+                    "ADD" => (
+                        format!("{} + {}", dint(&a), dint(&b)),
+                        format!("{} + {}", lreal(&a), lreal(&b)),
+                        format!("__SLC_U({}) + __SLC_U({}) > 65535", int(&a), int(&b)),
+                    ),
+                    "SUB" => (
+                        format!("{} - {}", dint(&a), dint(&b)),
+                        format!("{} - {}", lreal(&a), lreal(&b)),
+                        format!("__SLC_U({}) < __SLC_U({})", int(&a), int(&b)),
+                    ),
+                    "MUL" => (
+                        format!("{} * {}", dint(&a), dint(&b)),
+                        format!("{} * {}", lreal(&a), lreal(&b)),
+                        "FALSE".into(),
+                    ),
+                    _ => (
+                        format!("__SLC_IDIV({}, {})", dint(&a), dint(&b)),
+                        format!("__SLC_FDIV({}, {})", lreal(&a), lreal(&b)),
+                        "FALSE".into(),
+                    ),
+                };
+                let realm = is_real(&a) || is_real(&b);
+                gate(self.store(addr(&op(2)), realm, &ie, &re, &carry))
+            }
+            "NEG" | "ABS" | "MOV" => {
+                let a = op(0);
+                let (ie, re) = match i.mn {
+                    "NEG" => (format!("-{}", dint(&a)), format!("-{}", lreal(&a))),
+                    "ABS" => (format!("ABS({})", dint(&a)), format!("ABS({})", lreal(&a))),
+                    _ => (dint(&a), lreal(&a)),
+                };
+                gate(self.store(addr(&op(1)), is_real(&a), &ie, &re, "FALSE"))
+            }
+            "SQR" => {
+                let a = op(0);
+                let re = format!("SQRT(ABS({}))", lreal(&a));
+                let carry = format!("{} < 0.0", lreal(&a));
+                gate(self.store(addr(&op(1)), true, "", &re, &carry))
+            }
+            "SCL" => {
+                let re = format!(
+                    "{} * {} / 10000.0 + {}",
+                    lreal(&op(0)),
+                    lreal(&op(1)),
+                    lreal(&op(2))
+                );
+                gate(self.store(addr(&op(3)), true, "", &re, "FALSE"))
+            }
+            "SCP" => {
+                let (x, il, ih, sl, sh) = (
+                    lreal(&op(0)),
+                    lreal(&op(1)),
+                    lreal(&op(2)),
+                    lreal(&op(3)),
+                    lreal(&op(4)),
+                );
+                let re = format!("__SLC_FDIV(({x} - {il}) * ({sh} - {sl}), {ih} - {il}) + {sl}");
+                gate(self.store(addr(&op(5)), true, "", &re, "FALSE"))
+            }
+            "CLR" => gate(self.store(a0, false, "0", "0.0", "FALSE")),
+            "AND" | "OR" | "XOR" | "NOT" | "MVM" => {
+                if !self.ints(n, r, i, ops) {
+                    return String::new();
+                }
+                let (e, dest) = match i.mn {
+                    "NOT" => (format!("__SLC_NOT({})", int(&op(0))), op(1)),
+                    "MVM" => (
+                        format!(
+                            "__SLC_MVM({}, {}, {})",
+                            int(&op(0)),
+                            int(&op(1)),
+                            int(&op(2))
+                        ),
+                        op(2),
+                    ),
+                    m => (
+                        format!("__SLC_{m}({}, {})", int(&op(0)), int(&op(1))),
+                        op(2),
+                    ),
+                };
+                let ie = format!("INT_TO_DINT({e})");
+                gate(self.store(addr(&dest), false, &ie, "", "FALSE"))
+            }
+            "JSR" => {
+                let Some(Operand::Number(k)) = ops.first().cloned() else {
+                    return String::new();
+                };
+                if !self.p.files.contains_key(&k) {
+                    self.err(
+                        Code::E237,
+                        i.span,
+                        format!(
+                            "LAD {n} rung {r}, `{}`: the project has no program file LAD {k}",
+                            i.text
+                        ),
+                    );
+                    return String::new();
+                }
+                if self.stack.contains(&k) || k == n {
+                    self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `{}`: LAD {k} calls itself (the SLC has no recursion)", i.text));
+                    return String::new();
+                }
+                if self.stack.len() + 1 >= MAX_CALLS {
+                    self.err(
+                        Code::E237,
+                        i.span,
+                        format!(
+                            "LAD {n} rung {r}, `{}`: subroutine calls nest deeper than {MAX_CALLS}",
+                            i.text
+                        ),
+                    );
+                    return String::new();
+                }
+                self.stack.push(n);
+                let depth = self.stack.len();
+                let body = self.file(k, depth);
+                self.stack.pop();
+                let mut s = format!(
+                    "    IF __rc THEN\n    (* JSR {k} *)\n{body}    __rc := TRUE;\n    END_IF;\n"
+                );
+                if let Some(u) = level.seg {
+                    if self.ends_scan(k, &mut BTreeSet::new()) {
+                        let _ = writeln!(
+                            s,
+                            "    IF __tnd THEN __pc{u} := -1; __j{u} := TRUE; END_IF;"
+                        );
+                    }
+                }
+                s
+            }
+            "SBR" | "LBL" | "NOP" => String::new(),
+            "AFI" => "    __rc := FALSE;\n".into(),
+            "MCR" => "    __mcr := __rc;\n".into(),
+            "JMP" => {
+                let Some(Operand::Number(l)) = ops.first().cloned() else {
+                    return String::new();
+                };
+                let (Some(u), Some(seg)) = (level.seg, level.labels.get(&l)) else {
+                    self.err(
+                        Code::E237,
+                        i.span,
+                        format!(
+                            "LAD {n} rung {r}, `{}`: no `LBL {l}` in this program file",
+                            i.text
+                        ),
+                    );
+                    return String::new();
+                };
+                gate(format!("__pc{u} := {seg}; __j{u} := TRUE;"))
+            }
+            "RET" | "TND" => {
+                let u = level.seg.unwrap_or(0);
+                let tnd = if i.mn == "TND" { "__tnd := TRUE; " } else { "" };
+                gate(format!("{tnd}__pc{u} := -1; __j{u} := TRUE;"))
+            }
+            other => {
+                // Every row of the table has a case above.
+                self.err(
+                    Code::E231,
+                    i.span,
+                    format!("`{other}`: this SLC-500 instruction is not implemented by automat"),
+                );
+                String::new()
+            }
+        }
+    }
+
+    /// Bitwise instructions take integer words only.
+    fn ints(&mut self, n: u32, r: usize, i: &Ins, ops: &[Operand]) -> bool {
+        if ops.iter().any(is_real) {
+            self.err(
+                Code::E232,
+                i.span,
+                format!(
+                    "LAD {n} rung {r}, `{}`: {} works on integer words, not floats",
+                    i.text, i.mn
+                ),
+            );
+            return false;
+        }
+        true
+    }
+
+    fn rem(&mut self, a: Address) -> usize {
+        let next = self.rems.len();
+        *self.rems.entry((a.file, a.index())).or_insert(next)
+    }
+
+    /// Stores a result in `dest` with the math status: `ie` the exact
+    /// integer (DINT) result, `re` the LREAL one (used when `realm`, or
+    /// when `dest` is a float).
+    fn store(&self, dest: Address, realm: bool, ie: &str, re: &str, carry: &str) -> String {
+        let d = place(dest);
+        if dest.ty == FileType::F {
+            let re = if realm || ie.is_empty() {
+                re.to_string()
+            } else {
+                format!("DINT_TO_LREAL({ie})")
+            };
+            format!("{d} := __SLC_REAL({re}, S2[0], S2[5]);")
+        } else if realm || ie.is_empty() {
+            format!("{d} := __SLC_INT(__SLC_ROUND({re}), {carry}, S2[0], S2[5]);")
+        } else {
+            format!("{d} := __SLC_INT({ie}, {carry}, S2[0], S2[5]);")
+        }
+    }
+}

@@ -1,0 +1,708 @@
+//! `.slc` text → program files of rungs, the symbol table and the
+//! data-file table (the format is in docs/allen-bradley.md).
+//!
+//! Line-oriented: `LAD n [name]` starts a program file, `SYM`, `DATA` and
+//! `RC` lines are table entries and rung comments, `;` starts a comment
+//! line, and anything else is rung text: one rung per line, or `SOR … EOR`
+//! over as many lines as it takes. Operands are resolved here (symbols to
+//! addresses, kinds checked against the instruction's table row); an error
+//! is reported once, at the instruction, and the rung is dropped.
+
+// Spans and names of rungs, files, symbols and declarations not read by the
+// ST generation are kept for the ladder drawing (issue 12 point 6).
+#![allow(dead_code)]
+
+use super::instr::{self, Kind};
+use automat_base::slc::{self, Address, FileType, Part};
+use automat_base::{Code, Diagnostic, FileId, Span};
+use std::collections::BTreeMap;
+
+/// One operand as the emitter needs it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Operand {
+    Addr(Address),
+    Int(i64),
+    Real(f64),
+    /// A timer's time base in milliseconds (0.01 s → 10).
+    Base(i64),
+    /// A program file (JSR) or label (JMP, LBL) number.
+    Number(u32),
+}
+
+#[derive(Clone, Debug)]
+pub struct Ins {
+    pub mn: &'static str,
+    pub ops: Vec<Operand>,
+    pub span: Span,
+    /// The instruction as written, for messages.
+    pub text: String,
+}
+
+#[derive(Clone, Debug)]
+pub enum Elem {
+    Bst(Span),
+    Nxb(Span),
+    Bnd(Span),
+    Ins(Ins),
+}
+
+#[derive(Clone, Debug)]
+pub struct Rung {
+    pub elems: Vec<Elem>,
+    pub span: Span,
+    pub comment: Option<String>,
+}
+
+#[derive(Clone, Debug)]
+pub struct LadFile {
+    pub number: u32,
+    pub name: String,
+    pub span: Span,
+    pub rungs: Vec<Rung>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Symbol {
+    pub name: String,
+    pub addr: Address,
+    pub desc: String,
+}
+
+#[derive(Clone, Debug)]
+pub struct DataDecl {
+    pub ty: FileType,
+    pub file: u32,
+    pub elements: u32,
+    pub init: Vec<Operand>,
+    pub span: Span,
+}
+
+/// Everything read from the `.slc` files of a project.
+#[derive(Default)]
+pub struct Project {
+    pub files: BTreeMap<u32, LadFile>,
+    pub symbols: Vec<Symbol>,
+    pub data: Vec<DataDecl>,
+    /// Every address an instruction names, with where (for sizing and the
+    /// "beyond a declared file" check).
+    pub used: Vec<(Address, Span)>,
+    pub diags: Vec<Diagnostic>,
+}
+
+/// A word of a line with its byte range in the file.
+#[derive(Clone, Debug)]
+struct Tok {
+    text: String,
+    up: String,
+    start: u32,
+    end: u32,
+}
+
+fn words(line: &str, at: u32) -> Vec<Tok> {
+    let mut out = Vec::new();
+    let b = line.as_bytes();
+    let mut i = 0;
+    while i < b.len() {
+        let c = b[i];
+        if c.is_ascii_whitespace() || c == b',' {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        if c == b'"' {
+            i += 1;
+            while i < b.len() && b[i] != b'"' {
+                i += 1;
+            }
+            i = (i + 1).min(b.len());
+        } else {
+            while i < b.len() && !b[i].is_ascii_whitespace() && b[i] != b',' {
+                i += 1;
+            }
+        }
+        while i < b.len() && !line.is_char_boundary(i) {
+            i += 1;
+        }
+        let text = &line[start..i];
+        out.push(Tok {
+            text: text.to_string(),
+            up: text.to_ascii_uppercase(),
+            start: at + start as u32,
+            end: at + i as u32,
+        });
+    }
+    out
+}
+
+/// Is this token a symbol name (letters, digits, `_`, not starting with a
+/// digit) rather than an address or a constant?
+fn is_name(s: &str) -> bool {
+    s.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+        && s.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_')
+}
+
+pub struct Reader<'a> {
+    pub p: &'a mut Project,
+    file: FileId,
+    /// The program file rungs go to.
+    lad: u32,
+    comment: Option<String>,
+    /// An open `SOR`: its tokens so far and where it started.
+    open: Option<(Vec<Tok>, u32)>,
+}
+
+impl<'a> Reader<'a> {
+    pub fn new(p: &'a mut Project, file: FileId) -> Reader<'a> {
+        Reader {
+            p,
+            file,
+            lad: 2,
+            comment: None,
+            open: None,
+        }
+    }
+
+    fn span(&self, t: &Tok) -> Span {
+        Span::new(self.file, t.start, t.end)
+    }
+
+    fn err(&mut self, code: Code, span: Span, msg: String) {
+        self.p.diags.push(Diagnostic::error(code, span, msg));
+    }
+
+    /// First pass over a file: the symbol and data tables (so rungs above
+    /// a `SYM` line may use the symbol).
+    pub fn tables(&mut self, text: &str) {
+        let mut offset = 0u32;
+        for line in text.split_inclusive('\n') {
+            let at = offset;
+            offset += line.len() as u32;
+            let toks = words(line, at);
+            match toks.first().map(|t| t.up.as_str()) {
+                Some("SYM") => self.symbol(&toks),
+                Some("DATA") => self.data(&toks),
+                _ => {}
+            }
+        }
+    }
+
+    /// Second pass: program files and rungs.
+    pub fn rungs(&mut self, text: &str) {
+        let mut offset = 0u32;
+        for line in text.split_inclusive('\n') {
+            let at = offset;
+            offset += line.len() as u32;
+            if line.trim_start().starts_with(';') {
+                continue;
+            }
+            let toks = words(line, at);
+            let Some(first) = toks.first() else { continue };
+            if self.open.is_none() {
+                match first.up.as_str() {
+                    "SYM" | "DATA" => continue,
+                    "RC" => {
+                        let rest = line.trim_start()[2..].trim();
+                        self.comment = Some(rest.trim_matches('"').to_string());
+                        continue;
+                    }
+                    "LAD" => {
+                        self.lad_header(&toks);
+                        continue;
+                    }
+                    _ => {}
+                }
+            }
+            for t in toks {
+                match (t.up.as_str(), self.open.is_some()) {
+                    ("SOR", false) => self.open = Some((Vec::new(), t.start)),
+                    ("SOR", true) => {
+                        let s = self.span(&t);
+                        self.err(
+                            Code::E235,
+                            s,
+                            "`SOR` inside a rung: the rung before has no `EOR`".into(),
+                        );
+                    }
+                    ("EOR", true) => {
+                        if let Some((body, start)) = self.open.take() {
+                            self.rung(&body, Span::new(self.file, start, t.end));
+                        }
+                    }
+                    ("EOR", false) => {
+                        let s = self.span(&t);
+                        self.err(Code::E235, s, "`EOR` without `SOR`".into());
+                    }
+                    (_, true) => {
+                        if let Some((body, _)) = self.open.as_mut() {
+                            body.push(t);
+                        }
+                    }
+                    (_, false) => {
+                        // One rung per line.
+                        let rest: Vec<Tok> = words(line, at);
+                        let span = Span::new(
+                            self.file,
+                            rest.first().map_or(at, |t| t.start),
+                            rest.last().map_or(at, |t| t.end),
+                        );
+                        self.rung(&rest, span);
+                        break;
+                    }
+                }
+            }
+        }
+        if let Some((_, start)) = self.open.take() {
+            self.err(
+                Code::E235,
+                Span::new(self.file, start, start + 3),
+                "the rung started by `SOR` has no `EOR`".into(),
+            );
+        }
+    }
+
+    fn lad_header(&mut self, toks: &[Tok]) {
+        let span = Span::new(self.file, toks[0].start, toks.last().map_or(0, |t| t.end));
+        let n = toks.get(1).and_then(|t| t.up.parse::<u32>().ok());
+        match n {
+            Some(n) if (2..=255).contains(&n) => {
+                let name = toks[2..]
+                    .iter()
+                    .map(|t| t.text.as_str())
+                    .collect::<Vec<_>>()
+                    .join(" ");
+                if self.p.files.contains_key(&n) {
+                    self.err(
+                        Code::E237,
+                        span,
+                        format!("program file LAD {n} is defined twice"),
+                    );
+                } else {
+                    self.p.files.insert(
+                        n,
+                        LadFile {
+                            number: n,
+                            name,
+                            span,
+                            rungs: Vec::new(),
+                        },
+                    );
+                }
+                self.lad = n;
+            }
+            _ => self.err(
+                Code::E237,
+                span,
+                "`LAD n`: a program file number is 2 (the main file) to 255".into(),
+            ),
+        }
+    }
+
+    fn symbol(&mut self, toks: &[Tok]) {
+        let span = Span::new(self.file, toks[0].start, toks.last().map_or(0, |t| t.end));
+        let (Some(a), Some(name)) = (toks.get(1), toks.get(2)) else {
+            self.err(
+                Code::E238,
+                span,
+                "a symbol line is `SYM ADDRESS NAME [\"description\"]`".into(),
+            );
+            return;
+        };
+        let addr = match slc::parse(&a.text) {
+            Ok(addr) => addr,
+            Err(why) => {
+                let s = self.span(a);
+                self.err(Code::E236, s, why);
+                return;
+            }
+        };
+        if !is_name(&name.text)
+            || slc::looks_like(&name.text)
+            || instr::find(&name.up).is_some()
+            || name.up.starts_with("__")
+        {
+            let s = self.span(name);
+            self.err(Code::E238, s, format!("symbol `{}`: a symbol is letters, digits and `_`, not an instruction or an address, and does not start with a digit or `__`", name.text));
+            return;
+        }
+        if self
+            .p
+            .symbols
+            .iter()
+            .any(|s| s.name.eq_ignore_ascii_case(&name.text))
+        {
+            let s = self.span(name);
+            self.err(
+                Code::E238,
+                s,
+                format!("symbol `{}` is defined twice", name.text),
+            );
+            return;
+        }
+        let desc = toks[3..]
+            .iter()
+            .map(|t| t.text.trim_matches('"'))
+            .collect::<Vec<_>>()
+            .join(" ");
+        self.p.symbols.push(Symbol {
+            name: name.text.clone(),
+            addr,
+            desc,
+        });
+        self.p.used.push((addr, self.span(a)));
+    }
+
+    fn data(&mut self, toks: &[Tok]) {
+        let span = Span::new(self.file, toks[0].start, toks.last().map_or(0, |t| t.end));
+        let bad = "a data-file line is `DATA <type><number> <elements> [= values...]` (DATA N7 10 = 1 2 3)";
+        let (Some(f), Some(n)) = (toks.get(1), toks.get(2)) else {
+            self.err(Code::E238, span, bad.into());
+            return;
+        };
+        let Some(ty) = f.up.chars().next().and_then(FileType::from_letter) else {
+            self.err(Code::E238, span, bad.into());
+            return;
+        };
+        let num = if f.up.len() == 1 {
+            ty.fixed_number()
+        } else {
+            f.up[1..].parse::<u32>().ok()
+        };
+        let Some(num) = num.filter(|&k| k <= 255) else {
+            self.err(Code::E238, span, bad.into());
+            return;
+        };
+        match FileType::of_number(num) {
+            Some(t) if t != ty => {
+                self.err(
+                    Code::E238,
+                    span,
+                    format!("file {num} is a {} file", t.letter()),
+                );
+                return;
+            }
+            None if matches!(ty, FileType::O | FileType::I | FileType::S) => {
+                self.err(Code::E238, span, "O, I and S are files 0, 1 and 2".into());
+                return;
+            }
+            _ => {}
+        }
+        let max = if matches!(ty, FileType::I | FileType::O) {
+            slc::MAX_SLOT + 1
+        } else {
+            slc::MAX_ELEMENT + 1
+        };
+        let Some(elements) = n.up.parse::<u32>().ok().filter(|&e| (1..=max).contains(&e)) else {
+            let s = self.span(n);
+            self.err(
+                Code::E238,
+                s,
+                format!("a data file has 1 to {max} elements"),
+            );
+            return;
+        };
+        let mut init = Vec::new();
+        let words = if matches!(ty, FileType::I | FileType::O) {
+            elements * slc::IO_SLOT_WORDS
+        } else {
+            elements * ty.words()
+        };
+        match toks.get(3).map(|t| t.up.as_str()) {
+            None => {}
+            Some("=") => {
+                for t in &toks[4..] {
+                    let v = constant(&t.up).filter(|v| {
+                        ty == FileType::F
+                            || matches!(v, Operand::Int(i) if (-32768..=65535).contains(i))
+                    });
+                    match v {
+                        Some(v) => init.push(v),
+                        None => {
+                            let s = self.span(t);
+                            self.err(
+                                Code::E238,
+                                s,
+                                format!(
+                                    "`{}`: an initial value of a {} file is {}",
+                                    t.text,
+                                    ty.letter(),
+                                    if ty == FileType::F {
+                                        "a number"
+                                    } else {
+                                        "an integer -32768 to 65535"
+                                    }
+                                ),
+                            );
+                            return;
+                        }
+                    }
+                }
+                if init.len() as u32 > words {
+                    self.err(
+                        Code::E238,
+                        span,
+                        format!("{} initial values for {words} words", init.len()),
+                    );
+                    return;
+                }
+            }
+            Some(_) => {
+                self.err(Code::E238, span, bad.into());
+                return;
+            }
+        }
+        if self.p.data.iter().any(|d| d.ty == ty && d.file == num) {
+            self.err(
+                Code::E238,
+                span,
+                format!("data file {}{num} is declared twice", ty.letter()),
+            );
+            return;
+        }
+        self.p.data.push(DataDecl {
+            ty,
+            file: num,
+            elements,
+            init,
+            span,
+        });
+    }
+
+    /// Reads one rung's tokens into instructions; drops the rung on an
+    /// error (reported once).
+    fn rung(&mut self, toks: &[Tok], span: Span) {
+        let comment = self.comment.take();
+        let mut elems = Vec::new();
+        let mut depth = 0u32;
+        let mut i = 0;
+        let mut ok = true;
+        while i < toks.len() {
+            let t = &toks[i];
+            let s = self.span(t);
+            match t.up.as_str() {
+                "BST" => {
+                    depth += 1;
+                    elems.push(Elem::Bst(s));
+                    i += 1;
+                    continue;
+                }
+                "NXB" | "BND" if depth == 0 => {
+                    self.err(
+                        Code::E235,
+                        s,
+                        format!("`{}` outside a branch: no `BST` opened it", t.up),
+                    );
+                    ok = false;
+                    break;
+                }
+                "NXB" => {
+                    elems.push(Elem::Nxb(s));
+                    i += 1;
+                    continue;
+                }
+                "BND" => {
+                    depth -= 1;
+                    elems.push(Elem::Bnd(s));
+                    i += 1;
+                    continue;
+                }
+                _ => {}
+            }
+            let Some(def) = instr::find(&t.up) else {
+                let why = if instr::is_unimplemented(&t.up) {
+                    (
+                        Code::E231,
+                        format!(
+                            "`{}`: this SLC-500 instruction is not implemented by automat",
+                            t.text
+                        ),
+                    )
+                } else {
+                    (
+                        Code::E230,
+                        format!("`{}` is not an SLC-500 instruction", t.text),
+                    )
+                };
+                self.err(why.0, s, why.1);
+                ok = false;
+                break;
+            };
+            let kinds = def.operands;
+            let ops_toks = &toks[i + 1..(i + 1 + kinds.len()).min(toks.len())];
+            let end = ops_toks.last().map_or(t.end, |o| o.end);
+            let text = std::iter::once(t.text.as_str())
+                .chain(ops_toks.iter().map(|o| o.text.as_str()))
+                .collect::<Vec<_>>()
+                .join(" ");
+            let ispan = Span::new(self.file, t.start, end);
+            // An operand missing: the next word is an instruction or the end.
+            let short = ops_toks.len() < kinds.len()
+                || ops_toks.iter().any(|o| {
+                    instr::find(&o.up).is_some() || matches!(o.up.as_str(), "BST" | "NXB" | "BND")
+                });
+            if short {
+                self.err(
+                    Code::E233,
+                    ispan,
+                    format!(
+                        "`{text}`: {} takes {} operand(s): {}",
+                        def.name,
+                        kinds.len(),
+                        instr::describe(kinds)
+                    ),
+                );
+                ok = false;
+                break;
+            }
+            let mut ops = Vec::new();
+            for (k, o) in kinds.iter().zip(ops_toks) {
+                match self.operand(*k, o) {
+                    Ok(v) => ops.push(v),
+                    Err((code, why)) => {
+                        let os = self.span(o);
+                        self.err(code, os, format!("`{text}`: {why}"));
+                        ok = false;
+                        break;
+                    }
+                }
+            }
+            if !ok {
+                break;
+            }
+            for (o, ot) in ops.iter().zip(ops_toks) {
+                if let Operand::Addr(a) = o {
+                    self.p.used.push((*a, self.span(ot)));
+                }
+            }
+            elems.push(Elem::Ins(Ins {
+                mn: def.name,
+                ops,
+                span: ispan,
+                text,
+            }));
+            i += 1 + kinds.len();
+        }
+        if ok && depth > 0 {
+            self.err(
+                Code::E235,
+                span,
+                "a branch is not closed: `BST` without its `BND`".into(),
+            );
+            ok = false;
+        }
+        if !ok {
+            return;
+        }
+        if elems.is_empty() {
+            return;
+        }
+        let lad = self.lad;
+        let file = self.file;
+        let f = self.p.files.entry(lad).or_insert_with(|| LadFile {
+            number: lad,
+            name: String::new(),
+            span: Span::new(file, 0, 0),
+            rungs: Vec::new(),
+        });
+        f.rungs.push(Rung {
+            elems,
+            span,
+            comment,
+        });
+    }
+
+    fn address(&self, t: &Tok) -> Result<Address, String> {
+        if let Some(s) = self
+            .p
+            .symbols
+            .iter()
+            .find(|s| s.name.eq_ignore_ascii_case(&t.text))
+        {
+            return Ok(s.addr);
+        }
+        if t.up.starts_with('#') || t.up.contains('[') {
+            return Err("indexed (`#`) and indirect (`[ ]`) addresses are not implemented".into());
+        }
+        if is_name(&t.text) && !slc::looks_like(&t.text) {
+            return Err(format!(
+                "`{}` is no address and no symbol of the table",
+                t.text
+            ));
+        }
+        slc::parse(&t.text)
+    }
+
+    fn operand(&self, kind: Kind, t: &Tok) -> Result<Operand, (Code, String)> {
+        let wrong = |what: &str| (Code::E232, format!("`{}` is {what}", t.text));
+        match kind {
+            Kind::Base => match t.up.as_str() {
+                "0.01" | ".01" => Ok(Operand::Base(10)),
+                "1.0" | "1" | "1.00" => Ok(Operand::Base(1000)),
+                _ => Err(wrong("no time base: 0.01 or 1.0 (seconds)")),
+            },
+            Kind::Preset => match constant(&t.up) {
+                Some(Operand::Int(v)) if (-32768..=32767).contains(&v) => Ok(Operand::Int(v)),
+                _ => Err(wrong("no integer constant -32768 to 32767")),
+            },
+            Kind::File | Kind::Label => {
+                let digits = t.up.rsplit(':').next().unwrap_or("");
+                let max = if kind == Kind::File { 255 } else { 999 };
+                match digits.parse::<u32>() {
+                    Ok(n) if n <= max && (kind == Kind::Label || n >= 3) => Ok(Operand::Number(n)),
+                    _ if kind == Kind::File => {
+                        Err(wrong("no subroutine file number (3 to 255, `U:3` or `3`)"))
+                    }
+                    _ => Err(wrong("no label number (0 to 999, `Q2:5` or `5`)")),
+                }
+            }
+            Kind::Source if constant(&t.up).is_some() => match constant(&t.up) {
+                Some(Operand::Int(v)) if !(-32768..=32767).contains(&v) => {
+                    Err(wrong("an integer constant outside -32768 to 32767"))
+                }
+                Some(c) => Ok(c),
+                None => Err(wrong("no constant")),
+            },
+            _ => {
+                let a = self.address(t).map_err(|why| (Code::E236, why))?;
+                let ok = match kind {
+                    Kind::Bit => a.is_bit(),
+                    Kind::Timer => a.ty == FileType::T && a.part == Part::Element,
+                    Kind::Counter => a.ty == FileType::C && a.part == Part::Element,
+                    Kind::Structure => a.is_structure(),
+                    Kind::Source | Kind::Dest => !a.is_bit() && !a.is_structure(),
+                    _ => false,
+                };
+                if ok {
+                    Ok(Operand::Addr(a))
+                } else {
+                    Err(wrong(match kind {
+                        Kind::Bit => {
+                            "no bit address: a bit is `B3/1`, `I:1/1`, `T4:0/DN`, `N7:0/3`"
+                        }
+                        Kind::Timer => "no timer: a timer is an element of a T file (`T4:0`)",
+                        Kind::Counter => "no counter: a counter is an element of a C file (`C5:0`)",
+                        Kind::Structure => {
+                            "no timer, counter or control element (`T4:0`, `C5:0`, `R6:0`)"
+                        }
+                        Kind::Dest => "no word address to write (`N7:0`, `T4:0.PRE`, `F8:1`)",
+                        _ => "no word address or constant (`N7:0`, `T4:0.ACC`, `F8:1`, `25`)",
+                    }))
+                }
+            }
+        }
+    }
+}
+
+/// A numeric constant: an integer or a real (`1.5`, `-2.0E3`).
+pub fn constant(s: &str) -> Option<Operand> {
+    let body = s.strip_prefix(['-', '+']).unwrap_or(s);
+    if body.is_empty() || !body.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
+        return None;
+    }
+    if body.bytes().all(|b| b.is_ascii_digit()) {
+        return s.parse::<i64>().ok().map(Operand::Int);
+    }
+    s.parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite())
+        .map(Operand::Real)
+}
