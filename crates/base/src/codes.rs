@@ -305,6 +305,8 @@ codes! {
         "An interface variable takes an instance of a class that implements the interface (directly, through a base, or through an interface that extends it), or another interface variable of the same interface or of one that extends it.";
     E213 => "inheritance too large",
         "A class has more than 64 levels of bases, or the project's classes need more than 50,000 method bodies (every class compiles its own copy of each inherited method). Flatten the hierarchy.";
+    E214 => "bad __QUERYINTERFACE or __QUERYPOINTER",
+        "CODESYS's `__QUERYINTERFACE(source, dest)` takes two arguments: an interface value (a variable, member, element or call result; assign an instance to an interface variable first) and an interface variable, member or element, which it sets to the source's instance when that instance's class implements dest's interface (the result TRUE), or to no instance (FALSE). `__QUERYPOINTER(source, dest)` takes an interface value and a pointer variable, which it sets to the address of the source's instance (TRUE) or to 0 (FALSE).";
 
     // ---- Allen-Bradley SLC-500 ladder (automat-dialect, slc/) ----
     E230 => "unknown SLC-500 instruction",

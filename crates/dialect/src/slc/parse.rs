@@ -270,22 +270,20 @@ impl<'a> Reader<'a> {
                     .map(|t| t.text.as_str())
                     .collect::<Vec<_>>()
                     .join(" ");
-                if self.p.files.contains_key(&n) {
-                    self.err(
+                match self.p.files.entry(n) {
+                    std::collections::btree_map::Entry::Occupied(_) => self.err(
                         Code::E237,
                         span,
                         format!("program file LAD {n} is defined twice"),
-                    );
-                } else {
-                    self.p.files.insert(
-                        n,
-                        LadFile {
+                    ),
+                    std::collections::btree_map::Entry::Vacant(v) => {
+                        v.insert(LadFile {
                             number: n,
                             name,
                             span,
                             rungs: Vec::new(),
-                        },
-                    );
+                        });
+                    }
                 }
                 self.lad = n;
             }

@@ -109,7 +109,25 @@ impl Parser<'_> {
 
     fn ident_list(&mut self, what: &str) -> Vec<Ident> {
         let mut out = Vec::new();
-        while let Some(i) = self.expect_ident(what) {
+        loop {
+            // CODESYS's `__System.IQueryInterface`, the base its
+            // `__QUERYINTERFACE` asks for: every interface here can be
+            // queried, so it names nothing to inherit.
+            if self.is_word("__System")
+                && self.nth(1) == Tok::Dot
+                && self.word_at(2, "IQueryInterface")
+            {
+                self.bump();
+                self.bump();
+                self.bump();
+                if !self.eat(Tok::Comma) {
+                    break;
+                }
+                continue;
+            }
+            let Some(i) = self.expect_ident(what) else {
+                break;
+            };
             out.push(i);
             if !self.eat(Tok::Comma) {
                 break;

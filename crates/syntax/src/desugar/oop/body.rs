@@ -541,15 +541,21 @@ impl<'a> Oop<'a> {
                         self.itf_id(rhs, lhs);
                         return;
                     }
-                    // `i1 = i2`: the same instance (or both none).
+                    // `i1 = i2`: the same instance (or both none). Two places
+                    // of one interface compare inline; other values (two
+                    // interfaces, a call's result) through `__IE_<A>__<B>`,
+                    // which evaluates each once.
                     if let (T::Itf(a), T::Itf(b)) = (&lt, &rt) {
-                        if a == b && is_place(lhs) && is_place(rhs) {
-                            let i = *a;
-                            self.expr(lhs, cx);
-                            self.expr(rhs, cx);
-                            *e = self.itf_equal(i, lhs, rhs, *op == BinaryOp::Ne, e.span);
-                            return;
-                        }
+                        let (a, b, ne) = (*a, *b, *op == BinaryOp::Ne);
+                        self.expr(lhs, cx);
+                        self.expr(rhs, cx);
+                        *e = if a == b && is_place(lhs) && is_place(rhs) {
+                            let classes = self.implementors(a);
+                            self.itf_equal(&classes, lhs, rhs, ne, e.span)
+                        } else {
+                            self.itf_equal_call(a, b, lhs, rhs, ne, e.span)
+                        };
+                        return;
                     }
                 }
                 self.expr(lhs, cx);
@@ -561,10 +567,19 @@ impl<'a> Oop<'a> {
         }
     }
 
-    /// `l = r` of two values of interface `i` (`NOT (...)` for `<>`): the
-    /// same class number and the same reference of each implementing class
-    /// (an assignment sets one reference and leaves the others NULL).
-    fn itf_equal(&mut self, i: Symbol, l: &Expr, r: &Expr, negate: bool, span: Span) -> Expr {
+    /// `l = r` of two interface values (`NOT (...)` for `<>`): the same
+    /// class number and the same reference of each of `classes`, the
+    /// classes implementing both interfaces (an assignment sets one
+    /// reference and leaves the others NULL; a class implementing only one
+    /// of them has a number the other side never holds).
+    pub(super) fn itf_equal(
+        &mut self,
+        classes: &[Symbol],
+        l: &Expr,
+        r: &Expr,
+        negate: bool,
+        span: Span,
+    ) -> Expr {
         let member = |b: &Expr, m: Symbol| Expr {
             kind: ExprKind::Member {
                 base: Box::new(b.clone()),
@@ -581,8 +596,8 @@ impl<'a> Oop<'a> {
             span,
         };
         let mut fields = vec![self.sym("__id")];
-        for c in self.implementors(i) {
-            let f = format!("__r{}", self.ids.get(&c).copied().unwrap_or(0));
+        for c in classes {
+            let f = format!("__r{}", self.ids.get(c).copied().unwrap_or(0));
             fields.push(self.sym(&f));
         }
         let mut all: Option<Expr> = None;
@@ -611,6 +626,51 @@ impl<'a> Oop<'a> {
             }
         } else {
             all
+        }
+    }
+
+    /// `__IE_<A>__<B>(l, r)` (under NOT for `<>`), the function made for
+    /// the pair once all bodies are rewritten (`itf_equal_fn`).
+    fn itf_equal_call(
+        &mut self,
+        a: Symbol,
+        b: Symbol,
+        l: &Expr,
+        r: &Expr,
+        negate: bool,
+        span: Span,
+    ) -> Expr {
+        if !self.itf_equals.contains(&(a, b)) {
+            self.itf_equals.push((a, b));
+        }
+        let f = format!("__IE_{}__{}", self.name(a), self.name(b));
+        let f = self.sym(&f);
+        let arg = |v: &Expr| Arg {
+            name: None,
+            dir: ArgDir::In,
+            value: Some(v.clone()),
+            span,
+        };
+        let call = Expr {
+            kind: ExprKind::Call {
+                callee: Box::new(Expr {
+                    kind: ExprKind::Name(Ident { sym: f, span }),
+                    span,
+                }),
+                args: vec![arg(l), arg(r)],
+            },
+            span,
+        };
+        if negate {
+            Expr {
+                kind: ExprKind::Unary {
+                    op: crate::ast::UnaryOp::Not,
+                    operand: Box::new(call),
+                },
+                span,
+            }
+        } else {
+            call
         }
     }
 
@@ -695,7 +755,170 @@ impl<'a> Oop<'a> {
         };
     }
 
+    /// CODESYS `__QUERYINTERFACE(source, dest)`: `__IQ_<A>__<B>(source,
+    /// dest)`, made once all bodies are rewritten (`itf_query_fn`). False
+    /// when `e` is another call.
+    fn query_interface(&mut self, e: &mut Expr, cx: &Ctx) -> bool {
+        let span = e.span;
+        let ExprKind::Call { callee, args } = &mut e.kind else {
+            return false;
+        };
+        let pointer = self.is_word(callee, "__QUERYPOINTER");
+        if !pointer && !self.is_word(callee, "__QUERYINTERFACE") {
+            return false;
+        }
+        let op = if pointer {
+            "__QUERYPOINTER"
+        } else {
+            "__QUERYINTERFACE"
+        };
+        let positional = args.len() == 2
+            && args
+                .iter()
+                .all(|a| a.name.is_none() && a.dir == ArgDir::In && a.value.is_some());
+        let (src, dst) = match args.as_mut_slice() {
+            [Arg { value: Some(s), .. }, Arg { value: Some(d), .. }] if positional => (s, d),
+            _ => {
+                let what = if pointer { "a pointer" } else { "an interface" };
+                self.diags.push(Diagnostic::error(
+                    Code::E214,
+                    span,
+                    format!("`{op}` takes two arguments: an interface value and {what} variable"),
+                ));
+                e.kind = ExprKind::Error;
+                return true;
+            }
+        };
+        let (st, dt) = (self.type_of(src, cx), self.type_of(dst, cx));
+        if pointer {
+            return self.query_pointer(e, st, dt, cx);
+        }
+        let (a, b) = if let (T::Itf(a), T::Itf(b)) = (&st, &dt) {
+            (*a, *b)
+        } else {
+            let (what, at) = match (&st, &dt) {
+                (T::Itf(_), _) => ("its second argument is not an interface", dst.span),
+                (T::Class(_), _) => (
+                    "its first argument is an instance: assign it to an interface variable first",
+                    src.span,
+                ),
+                _ => ("its first argument is not an interface", src.span),
+            };
+            self.diags.push(Diagnostic::error(
+                Code::E214,
+                at,
+                format!("`__QUERYINTERFACE`: {what}"),
+            ));
+            e.kind = ExprKind::Error;
+            return true;
+        };
+        if !is_place(dst) {
+            self.diags.push(Diagnostic::error(
+                Code::E214,
+                dst.span,
+                "`__QUERYINTERFACE`: its second argument must be a variable, member or element it can set",
+            ));
+            e.kind = ExprKind::Error;
+            return true;
+        }
+        self.expr(src, cx);
+        self.expr(dst, cx);
+        if !self.itf_queries.contains(&(a, b)) {
+            self.itf_queries.push((a, b));
+        }
+        let f = format!("__IQ_{}__{}", self.name(a), self.name(b));
+        let f = self.sym(&f);
+        let (sa, sb) = (self.sym("__a"), self.sym("__b"));
+        let named = |n: Symbol, v: &Expr| Arg {
+            name: Some(Ident { sym: n, span }),
+            dir: ArgDir::In,
+            value: Some(v.clone()),
+            span,
+        };
+        let new_args = vec![named(sa, src), named(sb, dst)];
+        *e = Expr {
+            kind: ExprKind::Call {
+                callee: Box::new(Expr {
+                    kind: ExprKind::Name(Ident { sym: f, span }),
+                    span,
+                }),
+                args: new_args,
+            },
+            span,
+        };
+        true
+    }
+
+    /// CODESYS `__QUERYPOINTER(source, dest)`: `__QP_<A>__<k>(source,
+    /// dest)`, one function per call (the pointer's type is the call's).
+    fn query_pointer(&mut self, e: &mut Expr, st: T, dt: T, cx: &Ctx) -> bool {
+        let span = e.span;
+        let ExprKind::Call { args, .. } = &mut e.kind else {
+            return true;
+        };
+        let [Arg {
+            value: Some(src), ..
+        }, Arg {
+            value: Some(dst), ..
+        }] = args.as_mut_slice()
+        else {
+            return true;
+        };
+        let problem = match (&st, &dt) {
+            (T::Itf(_), T::Ref(_)) if is_place(dst) => None,
+            (T::Itf(_), T::Ref(_)) => Some((
+                "its second argument must be a variable, member or element it can set",
+                dst.span,
+            )),
+            (T::Itf(_), _) => Some(("its second argument is not a pointer", dst.span)),
+            (T::Class(_), _) => Some((
+                "its first argument is an instance: take `ADR(instance)` instead",
+                src.span,
+            )),
+            _ => Some(("its first argument is not an interface", src.span)),
+        };
+        if let Some((what, at)) = problem {
+            self.diags.push(Diagnostic::error(
+                Code::E214,
+                at,
+                format!("`__QUERYPOINTER`: {what}"),
+            ));
+            e.kind = ExprKind::Error;
+            return true;
+        }
+        let (T::Itf(a), T::Ref(target)) = (st, dt) else {
+            return true;
+        };
+        self.expr(src, cx);
+        self.expr(dst, cx);
+        let f = format!("__QP_{}__{}", self.name(a), self.itf_pointers.len() + 1);
+        let f = self.sym(&f);
+        self.itf_pointers.push((a, target, f));
+        let (sa, sp) = (self.sym("__a"), self.sym("__p"));
+        let named = |n: Symbol, v: &Expr| Arg {
+            name: Some(Ident { sym: n, span }),
+            dir: ArgDir::In,
+            value: Some(v.clone()),
+            span,
+        };
+        let new_args = vec![named(sa, src), named(sp, dst)];
+        *e = Expr {
+            kind: ExprKind::Call {
+                callee: Box::new(Expr {
+                    kind: ExprKind::Name(Ident { sym: f, span }),
+                    span,
+                }),
+                args: new_args,
+            },
+            span,
+        };
+        true
+    }
+
     pub(super) fn call(&mut self, e: &mut Expr, cx: &Ctx) {
+        if self.query_interface(e, cx) {
+            return;
+        }
         let span = e.span;
         let ExprKind::Call { callee, args } = &mut e.kind else {
             return;
@@ -744,8 +967,13 @@ impl<'a> Oop<'a> {
                         .cloned()
                         .or_else(|| cx.class.and_then(|c| self.class_var(c, id.sym)))
                     {
-                        // An instance call of an FB-typed variable.
+                        // An instance call of an FB-typed variable (a plain
+                        // function block, or one with methods: its inputs
+                        // with its bases').
                         if let Some(ps) = self.pou_params.get(&fb.sym).cloned() {
+                            self.convert_args(args, &ps, cx);
+                        } else if self.class(fb.sym).is_some() {
+                            let ps = self.class_inputs(fb.sym);
                             self.convert_args(args, &ps, cx);
                         }
                     }

@@ -549,4 +549,279 @@ impl<'a> Oop<'a> {
         }
         out
     }
+
+    /// `FUNCTION __IE_<A>__<B> : BOOL` over `__a : __ITF_A` and
+    /// `__b : __ITF_B`: whether they designate the same instance (or none).
+    pub(super) fn itf_equal_fn(&mut self, a: Symbol, b: Symbol) -> Item {
+        let span = self.itf(a).map_or(Span::default(), |i| i.name.span);
+        let id = |s: Symbol| Ident { sym: s, span };
+        let name_e = |s: Symbol| Expr {
+            kind: ExprKind::Name(Ident { sym: s, span }),
+            span,
+        };
+        let in_b = self.implementors(b);
+        let common: Vec<Symbol> = self
+            .implementors(a)
+            .into_iter()
+            .filter(|c| in_b.contains(c))
+            .collect();
+        let (asym, bsym) = (self.sym("__a"), self.sym("__b"));
+        let value = self.itf_equal(&common, &name_e(asym), &name_e(bsym), false, span);
+        let fname = format!("__IE_{}__{}", self.name(a), self.name(b));
+        let fsym = self.sym(&fname);
+        let sa = format!("__ITF_{}", self.name(a));
+        let sb = format!("__ITF_{}", self.name(b));
+        let (sa, sb) = (self.sym(&sa), self.sym(&sb));
+        let input = |n: Symbol, t: Symbol| VarDecl {
+            names: vec![id(n)],
+            location: None,
+            ty: TypeSpec::Named(id(t)),
+            edge: None,
+            init: None,
+            span,
+        };
+        let bool_sym = self.sym("BOOL");
+        Item::Pou(Pou {
+            kind: PouKind::Function,
+            name: id(fsym),
+            return_type: Some(TypeSpec::Named(id(bool_sym))),
+            var_blocks: vec![VarBlock {
+                kind: VarKind::Input,
+                constant: false,
+                retain: Default::default(),
+                decls: vec![input(asym, sa), input(bsym, sb)],
+                span,
+            }],
+            body: Body::St(vec![Stmt {
+                kind: StmtKind::Assign {
+                    target: name_e(fsym),
+                    value,
+                },
+                span,
+            }]),
+            lang: Lang::St,
+            span,
+        })
+    }
+
+    /// `FUNCTION __IQ_<A>__<B> : BOOL` (CODESYS `__QUERYINTERFACE`) over
+    /// `__a : __ITF_A` and `VAR_IN_OUT __b : __ITF_B`: `__b` designates
+    /// `__a`'s instance when its class implements B (TRUE), else none.
+    pub(super) fn itf_query_fn(&mut self, a: Symbol, b: Symbol) -> Item {
+        let span = self.itf(a).map_or(Span::default(), |i| i.name.span);
+        let id = |s: Symbol| Ident { sym: s, span };
+        let name_e = |s: Symbol| Expr {
+            kind: ExprKind::Name(Ident { sym: s, span }),
+            span,
+        };
+        let member_e = |base: Expr, m: Symbol| Expr {
+            kind: ExprKind::Member {
+                base: Box::new(base),
+                member: id(m),
+            },
+            span,
+        };
+        let int_e = |v: i128| Expr {
+            kind: ExprKind::Literal(Box::new(Literal {
+                kind: LitKind::Int(v),
+                ty: None,
+            })),
+            span,
+        };
+        let assign = |t: Expr, v: Expr| Stmt {
+            kind: StmtKind::Assign {
+                target: t,
+                value: v,
+            },
+            span,
+        };
+        let in_b = self.implementors(b);
+        let common: Vec<Symbol> = self
+            .implementors(a)
+            .into_iter()
+            .filter(|c| in_b.contains(c))
+            .collect();
+        let (asym, bsym, id_sym) = (self.sym("__a"), self.sym("__b"), self.sym("__id"));
+        let fname = format!("__IQ_{}__{}", self.name(a), self.name(b));
+        let fsym = self.sym(&fname);
+        let none = format!("__IN_{}", self.name(b));
+        let none = self.sym(&none);
+        let mut body = vec![assign(
+            name_e(bsym),
+            Expr {
+                kind: ExprKind::Call {
+                    callee: Box::new(name_e(none)),
+                    args: Vec::new(),
+                },
+                span,
+            },
+        )];
+        let mut arms = Vec::new();
+        for c in &common {
+            let n = self.ids.get(c).copied().unwrap_or(0);
+            let field = format!("__r{n}");
+            let field = self.sym(&field);
+            let true_e = Expr {
+                kind: ExprKind::Literal(Box::new(Literal {
+                    kind: LitKind::Bool(true),
+                    ty: None,
+                })),
+                span,
+            };
+            arms.push(CaseArm {
+                labels: vec![CaseLabel::Value(int_e(i128::from(n)))],
+                body: vec![
+                    assign(member_e(name_e(bsym), id_sym), int_e(i128::from(n))),
+                    assign(member_e(name_e(bsym), field), member_e(name_e(asym), field)),
+                    assign(name_e(fsym), true_e),
+                ],
+                span,
+            });
+        }
+        if !arms.is_empty() {
+            body.push(Stmt {
+                kind: StmtKind::Case {
+                    selector: member_e(name_e(asym), id_sym),
+                    arms,
+                    else_body: None,
+                },
+                span,
+            });
+        }
+        let sa = format!("__ITF_{}", self.name(a));
+        let sb = format!("__ITF_{}", self.name(b));
+        let (sa, sb) = (self.sym(&sa), self.sym(&sb));
+        let block = |kind: VarKind, n: Symbol, t: Symbol| VarBlock {
+            kind,
+            constant: false,
+            retain: Default::default(),
+            decls: vec![VarDecl {
+                names: vec![id(n)],
+                location: None,
+                ty: TypeSpec::Named(id(t)),
+                edge: None,
+                init: None,
+                span,
+            }],
+            span,
+        };
+        let bool_sym = self.sym("BOOL");
+        Item::Pou(Pou {
+            kind: PouKind::Function,
+            name: id(fsym),
+            return_type: Some(TypeSpec::Named(id(bool_sym))),
+            var_blocks: vec![
+                block(VarKind::Input, asym, sa),
+                block(VarKind::InOut, bsym, sb),
+            ],
+            body: Body::St(body),
+            lang: Lang::St,
+            span,
+        })
+    }
+
+    /// `FUNCTION <f> : BOOL` (CODESYS `__QUERYPOINTER`) over
+    /// `__a : __ITF_A` and `VAR_IN_OUT __p : POINTER TO <target>`: `__p` is
+    /// the address of `__a`'s instance (TRUE), or NULL without one (FALSE).
+    /// The instance's reference converts to the pointer as CODESYS
+    /// pointers do (`--lib codesys`).
+    pub(super) fn itf_pointer_fn(&mut self, a: Symbol, target: TypeSpec, fsym: Symbol) -> Item {
+        let span = self.itf(a).map_or(Span::default(), |i| i.name.span);
+        let id = |s: Symbol| Ident { sym: s, span };
+        let name_e = |s: Symbol| Expr {
+            kind: ExprKind::Name(Ident { sym: s, span }),
+            span,
+        };
+        let member_e = |base: Expr, m: Symbol| Expr {
+            kind: ExprKind::Member {
+                base: Box::new(base),
+                member: id(m),
+            },
+            span,
+        };
+        let assign = |t: Expr, v: Expr| Stmt {
+            kind: StmtKind::Assign {
+                target: t,
+                value: v,
+            },
+            span,
+        };
+        let (asym, psym, id_sym) = (self.sym("__a"), self.sym("__p"), self.sym("__id"));
+        let null = self.sym("NULL");
+        let mut body = vec![assign(name_e(psym), name_e(null))];
+        let mut arms = Vec::new();
+        for c in self.implementors(a) {
+            let n = self.ids.get(&c).copied().unwrap_or(0);
+            let field = format!("__r{n}");
+            let field = self.sym(&field);
+            arms.push(CaseArm {
+                labels: vec![CaseLabel::Value(Expr {
+                    kind: ExprKind::Literal(Box::new(Literal {
+                        kind: LitKind::Int(i128::from(n)),
+                        ty: None,
+                    })),
+                    span,
+                })],
+                body: vec![
+                    assign(name_e(psym), member_e(name_e(asym), field)),
+                    assign(
+                        name_e(fsym),
+                        Expr {
+                            kind: ExprKind::Literal(Box::new(Literal {
+                                kind: LitKind::Bool(true),
+                                ty: None,
+                            })),
+                            span,
+                        },
+                    ),
+                ],
+                span,
+            });
+        }
+        if !arms.is_empty() {
+            body.push(Stmt {
+                kind: StmtKind::Case {
+                    selector: member_e(name_e(asym), id_sym),
+                    arms,
+                    else_body: None,
+                },
+                span,
+            });
+        }
+        let sa = format!("__ITF_{}", self.name(a));
+        let sa = self.sym(&sa);
+        let decl = |n: Symbol, ty: TypeSpec| VarDecl {
+            names: vec![id(n)],
+            location: None,
+            ty,
+            edge: None,
+            init: None,
+            span,
+        };
+        let block = |kind: VarKind, d: VarDecl| VarBlock {
+            kind,
+            constant: false,
+            retain: Default::default(),
+            decls: vec![d],
+            span,
+        };
+        let mut pointer = TypeSpec::Ref {
+            target: Box::new(target),
+            span,
+        };
+        self.retype_spec(&mut pointer, VarKind::InOut);
+        let bool_sym = self.sym("BOOL");
+        Item::Pou(Pou {
+            kind: PouKind::Function,
+            name: id(fsym),
+            return_type: Some(TypeSpec::Named(id(bool_sym))),
+            var_blocks: vec![
+                block(VarKind::Input, decl(asym, TypeSpec::Named(id(sa)))),
+                block(VarKind::InOut, decl(psym, pointer)),
+            ],
+            body: Body::St(body),
+            lang: Lang::St,
+            span,
+        })
+    }
 }

@@ -108,6 +108,7 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
     let mut out: Vec<(usize, Item)> = Vec::new();
     // Plain POUs first: their bodies and declarations see classes too.
     d.pou_params = collect_params(units);
+    d.returns = collect_returns(units);
     collect_names(units, &mut d.types, &mut d.pou_vars, &mut d.globals);
     for unit in units.iter_mut() {
         for item in &mut unit.items {
@@ -148,6 +149,26 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
     for (sym, (u, _)) in itfs.iter() {
         for item in d.interface_items(*sym) {
             out.push((*u, item));
+        }
+    }
+    // After every body: the comparisons they asked for.
+    let mut k = 0;
+    while let Some(&(a, b)) = d.itf_equals.get(k) {
+        k += 1;
+        if let Some((u, _)) = itfs.get(&a) {
+            out.push((*u, d.itf_equal_fn(a, b)));
+        }
+    }
+    let mut k = 0;
+    while let Some(&(a, b)) = d.itf_queries.get(k) {
+        k += 1;
+        if let Some((u, _)) = itfs.get(&a) {
+            out.push((*u, d.itf_query_fn(a, b)));
+        }
+    }
+    for (a, target, f) in std::mem::take(&mut d.itf_pointers) {
+        if let Some((u, _)) = itfs.get(&a) {
+            out.push((*u, d.itf_pointer_fn(a, target, f)));
         }
     }
     diags.append(&mut d.diags);
@@ -227,6 +248,24 @@ fn collect_params(units: &[SourceUnit]) -> HashMap<Symbol, Vec<(Symbol, TypeSpec
                     }
                 }
                 out.insert(p.name.sym, v);
+            }
+        }
+    }
+    out
+}
+
+fn collect_returns(units: &[SourceUnit]) -> HashMap<Symbol, TypeSpec> {
+    let mut out = HashMap::new();
+    for unit in units {
+        for item in &unit.items {
+            if let Item::Pou(Pou {
+                kind: PouKind::Function,
+                name,
+                return_type: Some(t),
+                ..
+            }) = item
+            {
+                out.insert(name.sym, t.clone());
             }
         }
     }
@@ -323,6 +362,16 @@ struct Oop<'a> {
     /// Copies of base implementations needed by SUPER^.m(): (class, base, method).
     supers: Vec<(Symbol, Symbol, Symbol)>,
     pou_params: HashMap<Symbol, Vec<(Symbol, TypeSpec)>>,
+    /// The result type of every plain FUNCTION, as written.
+    returns: HashMap<Symbol, TypeSpec>,
+    /// Pairs of interfaces compared by `__IE_<A>__<B>` (values that are not
+    /// two places of one interface), in the order first met.
+    itf_equals: Vec<(Symbol, Symbol)>,
+    /// Pairs (source, destination) of `__QUERYINTERFACE` calls (`__IQ_`).
+    itf_queries: Vec<(Symbol, Symbol)>,
+    /// `__QUERYPOINTER` calls: (source interface, pointer target type as
+    /// written, generated function name).
+    itf_pointers: Vec<(Symbol, TypeSpec, Symbol)>,
     /// TYPE declarations, every variable of every plain POU, the globals (as written).
     types: HashMap<Symbol, TypeSpec>,
     pou_vars: HashMap<Symbol, HashMap<Symbol, TypeSpec>>,
@@ -358,6 +407,10 @@ impl<'a> Oop<'a> {
             inlined: 0,
             supers: Vec::new(),
             pou_params: HashMap::new(),
+            returns: HashMap::new(),
+            itf_equals: Vec::new(),
+            itf_queries: Vec::new(),
+            itf_pointers: Vec::new(),
             types: HashMap::new(),
             pou_vars: HashMap::new(),
             globals: HashMap::new(),
@@ -389,6 +442,24 @@ impl<'a> Oop<'a> {
 
     /// The class and its bases, outermost base last; `None` when the chain
     /// is broken (reported by `check_classes`).
+    /// The VAR_INPUT and VAR_IN_OUT of a class and its bases, as written.
+    fn class_inputs(&self, c: Symbol) -> Vec<(Symbol, TypeSpec)> {
+        let mut v = Vec::new();
+        for k in self.chain(c).iter().rev() {
+            let Some(kc) = self.class(*k) else { continue };
+            for b in &kc.var_blocks {
+                if matches!(b.kind, VarKind::Input | VarKind::InOut) {
+                    for decl in &b.decls {
+                        for n in &decl.names {
+                            v.push((n.sym, decl.ty.clone()));
+                        }
+                    }
+                }
+            }
+        }
+        v
+    }
+
     fn chain(&self, s: Symbol) -> Vec<Symbol> {
         let mut out = vec![s];
         let mut cur = s;

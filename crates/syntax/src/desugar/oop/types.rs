@@ -94,6 +94,24 @@ impl<'a> Oop<'a> {
                 T::Array(t) => self.spec_t(&t),
                 _ => T::Other,
             },
+            // A call's result: a plain function's, or a method's through an
+            // instance or an interface.
+            ExprKind::Call { callee, .. } => {
+                let ret = match &callee.kind {
+                    ExprKind::Name(f) => self.returns.get(&f.sym),
+                    ExprKind::Member { base, member } => match self.type_of(base, cx) {
+                        T::Class(c) => self
+                            .method_of(c, member.sym)
+                            .and_then(|(_, m)| m.return_type.as_ref()),
+                        T::Itf(i) => self
+                            .itf_method(i, member.sym)
+                            .and_then(|m| m.return_type.as_ref()),
+                        _ => None,
+                    },
+                    _ => None,
+                };
+                ret.map_or(T::Other, |t| self.spec_t(t))
+            }
             _ => T::Other,
         }
     }
