@@ -5,6 +5,7 @@
 //! is laid out automatically (`chart.rs`).
 
 mod chart;
+pub mod live;
 mod sheet;
 
 use crate::plot::layout::{Anchor, Diagram, Ink, Seg, Shape};
