@@ -53,6 +53,9 @@ impl SourceFile {
 #[derive(Default)]
 pub struct SourceMap {
     files: Vec<SourceFile>,
+    /// What a runtime fault at a place of generated code means to the
+    /// user (`add_fault_meaning`): the front end knows, the check does not.
+    fault_meanings: Vec<(Span, String)>,
 }
 
 impl SourceMap {
@@ -93,6 +96,22 @@ impl SourceMap {
     }
 
     /// `file:line:col` of a span's start.
+    /// Says what a runtime fault in `span` means (e.g. the SLC's major
+    /// fault of the overflow trap, raised by a subrange check in the
+    /// generated ST): the fault's message becomes `meaning`.
+    pub fn add_fault_meaning(&mut self, span: Span, meaning: impl Into<String>) {
+        self.fault_meanings.push((span, meaning.into()));
+    }
+
+    /// The meaning given to a fault at `span` (one starting inside a span
+    /// given to [`SourceMap::add_fault_meaning`]), if any.
+    pub fn fault_meaning(&self, span: Span) -> Option<&str> {
+        self.fault_meanings
+            .iter()
+            .find(|(s, _)| s.file == span.file && s.start <= span.start && span.start < s.end)
+            .map(|(_, m)| m.as_str())
+    }
+
     pub fn location(&self, span: Span) -> String {
         match self.files.get(span.file.0 as usize) {
             Some(f) => {

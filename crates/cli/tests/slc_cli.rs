@@ -86,7 +86,10 @@ fn an_unhandled_overflow_is_a_major_fault() {
     assert_eq!(out.status.code(), Some(3), "{}", text(&out.stderr));
     let err = text(&out.stderr);
     assert!(err.contains("runtime fault: <slc>/ladder.st:"), "{err}");
-    assert!(err.contains("value 1 outside 0..0"), "{err}");
+    assert!(
+        err.contains("fault in SLC: SLC major fault: math overflow trap S:5/0 set at the end of the scan (LAD 2 rung 0, `ADD N7:0 1 N7:1`)"),
+        "{err}"
+    );
     assert!(err.contains("PLC time T#0s"), "{err}");
 }
 

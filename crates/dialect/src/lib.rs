@@ -45,7 +45,7 @@ mod slc;
 mod timer;
 mod walk;
 
-use automat_base::{Code, Diagnostic, FileId, Interner, SourceMap};
+use automat_base::{Code, Diagnostic, FileId, Interner, SourceMap, Span};
 use automat_sema::Analysis;
 use automat_syntax::ast::{Item, SourceUnit};
 
@@ -163,8 +163,11 @@ pub fn parse_names<S: AsRef<str>>(names: &[S]) -> Result<Vec<Dialect>, String> {
 /// generated from the project's STL files (when they have no error: their
 /// diagnostics come from [`check_sources`]).
 pub fn add_libraries(map: &mut SourceMap, dialects: &[Dialect]) {
-    if let (Some(text), _) = slc::translate(map) {
-        map.add(slc::GENERATED, text);
+    if let (Some((text, meanings)), _) = slc::translate(map) {
+        let file = map.add(slc::GENERATED, text);
+        for (at, meaning) in meanings {
+            map.add_fault_meaning(Span::new(file, at.start, at.end), meaning);
+        }
     }
     if dialects.contains(&Dialect::Fst) {
         if let (Some(text), _) = fst::translate(map) {

@@ -62,7 +62,10 @@ pub fn fault(
                 .map(|f| f.name.clone())
                 .unwrap_or_default(),
             location: String::new(),
+            meaning: None,
         });
+    // Code generated from another language says what its faults mean.
+    let message = site.meaning.clone().unwrap_or(message);
     Fault {
         kind,
         message,

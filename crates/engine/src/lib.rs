@@ -132,6 +132,7 @@ impl Engine {
                 site: Site {
                     pou: inst.name.clone(),
                     location: String::new(),
+                    meaning: None,
                 },
             });
         }

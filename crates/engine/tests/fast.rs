@@ -18,6 +18,7 @@ fn program(f: Func) -> Program {
         sites: vec![Site {
             pou: "MAIN".into(),
             location: "main.st:7:9".into(),
+            meaning: None,
         }],
     }
 }

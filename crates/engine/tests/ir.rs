@@ -18,6 +18,7 @@ fn program(funcs: Vec<Func>, image_size: u32) -> Program {
         sites: vec![Site {
             pou: "MAIN".into(),
             location: "main.st:3:5".into(),
+            meaning: None,
         }],
     }
 }

@@ -41,6 +41,10 @@ pub struct Site {
     pub pou: String,
     /// `file:line:col`
     pub location: String,
+    /// What a fault here means, when the code is generated from another
+    /// language (`SourceMap::add_fault_meaning`): it replaces the
+    /// check's own message.
+    pub meaning: Option<String>,
 }
 
 /// Why the PLC stopped in its fault state.

@@ -189,6 +189,7 @@ impl Jit {
                 site: Site {
                     pou: String::new(),
                     location: String::new(),
+                    meaning: None,
                 },
             });
         }
@@ -199,6 +200,7 @@ impl Jit {
                 site: Site {
                     pou: String::new(),
                     location: String::new(),
+                    meaning: None,
                 },
             });
         };
@@ -220,6 +222,7 @@ impl Jit {
                             .map(|f| f.name.clone())
                             .unwrap_or_default(),
                         location: String::new(),
+                        meaning: None,
                     },
                 });
             }
@@ -255,6 +258,7 @@ impl Jit {
                         .map(|f| f.name.clone())
                         .unwrap_or_default(),
                     location: String::new(),
+                    meaning: None,
                 },
             }),
         }

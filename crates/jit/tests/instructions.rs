@@ -23,10 +23,12 @@ fn program(funcs: Vec<Func>, image: Vec<u8>) -> Program {
             Site {
                 pou: "F".into(),
                 location: "t.st:1:1".into(),
+                meaning: None,
             },
             Site {
                 pou: "F".into(),
                 location: "t.st:2:5".into(),
+                meaning: None,
             },
         ],
     }

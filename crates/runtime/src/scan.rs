@@ -250,6 +250,7 @@ fn count_overrun(
         site: Site {
             pou: instance.clone(),
             location: "(end of the run)".into(),
+            meaning: None,
         },
     };
     Some((fault, instance))

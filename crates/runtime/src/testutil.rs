@@ -77,6 +77,7 @@ impl Executor for Fake {
                     site: Site {
                         pou: "MAIN".into(),
                         location: "main.st:7:5".into(),
+                        meaning: None,
                     },
                 });
             }
@@ -90,6 +91,7 @@ impl Executor for Fake {
                     site: Site {
                         pou: "MAIN".into(),
                         location: "main.st:4:10".into(),
+                        meaning: None,
                     },
                 })
             }

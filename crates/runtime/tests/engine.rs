@@ -92,6 +92,7 @@ fn program(divisor: i32) -> Program {
         sites: vec![Site {
             pou: "MAIN".into(),
             location: "main.st:5:12".into(),
+            meaning: None,
         }],
     }
 }

@@ -33,6 +33,13 @@ pub struct Emitter<'a> {
     rems: BTreeMap<(u32, u32), usize>,
     /// A slot per PID block for its integral and last PV.
     pids: BTreeMap<(u32, u32), usize>,
+    /// The instruction being emitted, as diagnostics name it
+    /// (`LAD 2 rung 4, `ADD N7:0 1 N7:1``).
+    here: String,
+    /// The math instructions that can set the overflow trap S:5/0, as
+    /// [`Emitter::here`] named them; the one that set it last is
+    /// `__slc_trap` = its index + 1 at the end of the scan.
+    pub traps: Vec<String>,
 }
 
 /// Where the rungs of one inlined file run.
@@ -105,6 +112,8 @@ impl<'a> Emitter<'a> {
             loops: 0,
             rems: BTreeMap::new(),
             pids: BTreeMap::new(),
+            here: String::new(),
+            traps: Vec::new(),
         }
     }
 
@@ -151,7 +160,7 @@ impl<'a> Emitter<'a> {
                 len - 1
             );
         }
-        s.push_str("    __slc_started : BOOL;\n    __slc_last : LINT;\n    __slc_fault : __SLC_MAJOR_FAULT;\nEND_VAR\nVAR\n");
+        s.push_str("    __slc_started : BOOL;\n    __slc_last : LINT;\n    __slc_fault : __SLC_MAJOR_FAULT;\nEND_VAR\nVAR\n    __slc_trap : INT;\n");
         let _ = writeln!(
             s,
             "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d, __i : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;\n    __pidi, __pidp : ARRAY[0..{}] OF LREAL;",
@@ -163,9 +172,10 @@ impl<'a> Emitter<'a> {
             let _ = writeln!(s, "    __pc{k} : INT;\n    __j{k} : BOOL;");
         }
         s.push_str("END_VAR\n");
-        s.push_str("    __now := TIME_TO_LINT(__SCAN_TIME());\n    IF __slc_started THEN __d := LINT_TO_DINT(__now - __slc_last); ELSE __d := 0; END_IF;\n    __slc_last := __now;\n    (* S:1/15 first pass *)\n    S2[1].15 := NOT __slc_started;\n    __mcr := TRUE;\n    __tnd := FALSE;\n");
+        s.push_str("    __now := TIME_TO_LINT(__SCAN_TIME());\n    IF __slc_started THEN __d := LINT_TO_DINT(__now - __slc_last); ELSE __d := 0; END_IF;\n    __slc_last := __now;\n    (* S:1/15 first pass *)\n    S2[1].15 := NOT __slc_started;\n    __mcr := TRUE;\n    __tnd := FALSE;\n    __slc_trap := 0;\n");
         s.push_str(&main);
-        s.push_str("    __slc_started := TRUE;\n    (* S:5/0 overflow trap set at the end of the scan: a major fault *)\n    IF S2[5].0 THEN __slc_fault := BOOL_TO_INT(S2[5].0); END_IF;\nEND_PROGRAM\n");
+        s.push_str("    __slc_started := TRUE;\n");
+        // The overflow trap and END_PROGRAM follow (`super::trap_check`).
         s
     }
 
@@ -333,6 +343,7 @@ impl<'a> Emitter<'a> {
     }
 
     fn ins(&mut self, n: u32, r: usize, i: &Ins, level: &Level) -> String {
+        self.here = format!("LAD {n} rung {r}, `{}`", i.text);
         let ops = &i.ops;
         let op = |k: usize| ops.get(k).cloned().unwrap_or(Operand::Int(0));
         let a0 = addr(&op(0));
@@ -801,7 +812,16 @@ impl<'a> Emitter<'a> {
     /// Stores a result in `dest` with the math status: `ie` the exact
     /// integer (DINT) result, `re` the LREAL one (used when `realm`, or
     /// when `dest` is a float).
-    fn store(&self, dest: Address, realm: bool, ie: &str, re: &str, carry: &str) -> String {
+    /// S:0/1 tells whether this store overflowed: then it is the one to
+    /// name when the trap S:5/0 faults at the end of the scan.
+    fn store(&mut self, dest: Address, realm: bool, ie: &str, re: &str, carry: &str) -> String {
+        self.traps.push(self.here.clone());
+        let k = self.traps.len();
+        let store = self.store_status(dest, realm, ie, re, carry);
+        format!("{store} IF S2[0].1 THEN __slc_trap := {k}; END_IF;")
+    }
+
+    fn store_status(&self, dest: Address, realm: bool, ie: &str, re: &str, carry: &str) -> String {
         let d = place(dest);
         if dest.ty == FileType::F {
             let re = if realm || ie.is_empty() {

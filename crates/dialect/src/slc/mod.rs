@@ -40,9 +40,12 @@ pub fn is_slc_file(name: &str) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("slc"))
 }
 
+/// The generated ST and what a fault means at byte ranges of it.
+pub type Generated = (String, Vec<(std::ops::Range<u32>, String)>);
+
 /// Reads the `.slc` files of `map`: the generated ST (`None` when there are
 /// none, or when they have errors) and their diagnostics.
-pub fn translate(map: &SourceMap) -> (Option<String>, Vec<Diagnostic>) {
+pub fn translate(map: &SourceMap) -> (Option<Generated>, Vec<Diagnostic>) {
     let mut project = parse::Project::default();
     let slc: Vec<_> = map.files().filter(|(_, f)| is_slc_file(&f.name)).collect();
     if slc.is_empty() {
@@ -97,13 +100,18 @@ pub fn sheet(map: &SourceMap, pou: &str) -> Option<automat_plcopen::sheet::Sheet
 }
 
 /// The data files and rungs as Structured Text (its diagnostics go to the
-/// project's list).
-fn ladder_to_st(project: &mut parse::Project) -> String {
+/// project's list), with what a fault means at the byte ranges of the
+/// text that raise the SLC's major faults.
+fn ladder_to_st(project: &mut parse::Project) -> Generated {
     let mut layout = layout::Layout::new(project);
-    let (body, mut diags) = {
+    let (body, traps, mut diags) = {
         let mut e = emit::Emitter::new(project, &mut layout);
         let body = e.program();
-        (body, std::mem::take(&mut e.diags))
+        (
+            body,
+            std::mem::take(&mut e.traps),
+            std::mem::take(&mut e.diags),
+        )
     };
     project.diags.append(&mut diags);
     let mut s = String::from(
@@ -113,7 +121,36 @@ fn ladder_to_st(project: &mut parse::Project) -> String {
     s.push_str(&layout.globals(project));
     s.push_str(include_str!("../../lib/slc.st"));
     s.push_str(&body);
-    s
+    let meanings = trap_check(&mut s, &traps);
+    s.push_str("END_PROGRAM\n");
+    (s, meanings)
+}
+
+/// The end of the scan: the overflow trap S:5/0 left set is a major fault
+/// (the SLC stops). The runtime's fault is a subrange check on
+/// `__slc_fault`, one assignment line per math instruction that can set
+/// the trap, so each line's fault can say which instruction set it last
+/// (`SourceMap::add_fault_meaning`).
+fn trap_check(s: &mut String, traps: &[String]) -> Vec<(std::ops::Range<u32>, String)> {
+    use std::fmt::Write as _;
+    const WHAT: &str = "SLC major fault: math overflow trap S:5/0 set at the end of the scan";
+    let mut meanings = Vec::new();
+    s.push_str("    IF S2[5].0 THEN\n        CASE __slc_trap OF\n");
+    let mut line = |s: &mut String, head: String, meaning: String| {
+        let start = s.len() as u32;
+        // Not a constant 1: the checker would refuse it (E038).
+        let _ = writeln!(s, "        {head} __slc_fault := BOOL_TO_INT(S2[5].0);");
+        meanings.push((start..s.len() as u32, meaning));
+    };
+    for (k, here) in traps.iter().enumerate() {
+        line(s, format!("{}:", k + 1), format!("{WHAT} ({here})"));
+    }
+    // No instruction overflowed in this scan: the program set S:5/0
+    // itself (`OTL S:5/0`). (One that clears S:5/0 after an overflow and
+    // sets it again is named after that overflow.)
+    line(s, "ELSE".into(), WHAT.to_string());
+    s.push_str("        END_CASE;\n    END_IF;\n");
+    meanings
 }
 
 #[cfg(test)]
@@ -127,6 +164,7 @@ mod tests {
         map.add("t.slc", text);
         let (st, diags) = translate(&map);
         assert!(diags.is_empty(), "{diags:?}");
+        let st = st.map(|g| g.0);
         if std::env::var("SLC_DUMP").is_ok() {
             println!("{}", st.as_deref().unwrap_or(""));
         }

@@ -141,6 +141,7 @@ impl<'c, 'a> Gen<'c, 'a> {
         self.cx.sites.push(Site {
             pou,
             location: self.cx.sources.location(span),
+            meaning: self.cx.sources.fault_meaning(span).map(str::to_string),
         });
         self.cx.sites.len() as u32 - 1
     }
