@@ -52,6 +52,11 @@ impl Tx<'_, '_> {
     pub fn offset(&mut self, a: Addr) -> Value {
         match a.base {
             Base::Abs => self.iconst(a.offset as i64),
+            // Inside the proved extent `this + offset` is below the image
+            // length, a u32: the wrapping sum is the plain one.
+            Base::This if self.this_safe && a.offset as u64 <= self.extent => {
+                self.b.ins().iadd_imm_s(self.this, a.offset as i64)
+            }
             Base::This => self.wrap32(self.this, a.offset),
             Base::Reg(r) => match self.get(r) {
                 Ok(v) => self.wrap32(v, a.offset),
@@ -73,6 +78,9 @@ impl Tx<'_, '_> {
         if a.base == Base::Abs {
             return self.b.ins().iadd_imm_s(self.image, a.offset as i64);
         }
+        if let Some(p) = self.proved_pointer(a, size) {
+            return p;
+        }
         if a.base == Base::This && self.this_safe {
             // The entry check proved this + offset + size <= image length
             // (`translate.rs`), so the u32 sum does not wrap either.
@@ -88,7 +96,7 @@ impl Tx<'_, '_> {
         self.b.ins().iadd(self.image, at)
     }
 
-    fn load(&mut self, ty: MemTy, p: Value) -> Value {
+    pub(crate) fn load(&mut self, ty: MemTy, p: Value) -> Value {
         let fl = mem();
         let ins = self.b.ins();
         match ty {
@@ -115,7 +123,7 @@ impl Tx<'_, '_> {
         };
     }
 
-    fn wrap(&mut self, v: Value, ty: MemTy) -> Value {
+    pub(crate) fn wrap(&mut self, v: Value, ty: MemTy) -> Value {
         let (narrow, signed) = match ty {
             MemTy::I8 => (types::I8, true),
             MemTy::U8 => (types::I8, false),
@@ -216,7 +224,7 @@ impl Tx<'_, '_> {
             .ok_or_else(|| JitError::Backend(format!("{}: no register r{r}", self.f.name)))
     }
 
-    pub fn emit(&mut self, inst: &Inst) -> Result<(), JitError> {
+    pub(crate) fn emit_plain(&mut self, inst: &Inst) -> Result<(), JitError> {
         match *inst {
             Inst::IConst { dst, value } => {
                 let v = self.iconst(value);

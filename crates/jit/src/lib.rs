@@ -27,6 +27,7 @@ mod compile;
 mod emit;
 mod instances;
 mod locals;
+mod promote;
 mod rt;
 mod translate;
 

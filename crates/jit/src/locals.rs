@@ -18,7 +18,7 @@ use automat_ir::code::{Addr, Base, Func, Inst, Reg};
 
 /// Registers `inst` reads and the one it writes; `false` when the
 /// instruction's registers must all keep variables of their own.
-fn access(inst: &Inst, reads: &mut Vec<Reg>) -> (Option<Reg>, bool) {
+pub(crate) fn access(inst: &Inst, reads: &mut Vec<Reg>) -> (Option<Reg>, bool) {
     let base = |a: &Addr, out: &mut Vec<Reg>| {
         if let Base::Reg(r) = a.base {
             out.push(r);

@@ -24,14 +24,16 @@
 //! polls after long copies. Straight-line code needs no poll: without
 //! recursion, only loops run long.
 
+use crate::promote::{self, Fact};
 use crate::rt::{self, BuiltinCall, RunCtx};
 use crate::JitError;
-use automat_ir::code::{Func, Inst, Reg, RegClass};
+use automat_ir::code::{Addr, Base, Func, Inst, MemTy, Reg, RegClass};
 use cranelift_codegen::ir::{
     condcodes::IntCC, types, BlockArg, FuncRef, Function, InstBuilder, MemFlagsData, StackSlot,
     StackSlotData, StackSlotKind, Type, Value,
 };
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext, Variable};
+use std::collections::HashMap;
 
 /// Functions a compiled POU calls.
 pub struct Helpers {
@@ -86,6 +88,12 @@ pub(crate) struct Tx<'a, 'b> {
     pub pc: u32,
     /// The variables block-local registers share (`locals.rs`).
     pub pools: Pools,
+    /// Promoted slots of the instance (`promote.rs`): offset -> (type, variable).
+    pub promoted: HashMap<u32, (MemTy, Variable)>,
+    /// What is known about registers in the current block (`promote.rs`).
+    pub facts: HashMap<Reg, Fact>,
+    /// `this .. this + extent` is proved inside the image (0: nothing is).
+    pub extent: u64,
 }
 
 /// Per register class, the variables shared by block-local registers:
@@ -303,7 +311,14 @@ pub fn function(
         inlined: 0,
         pc: 0,
         pools,
+        promoted: HashMap::new(),
+        facts: HashMap::new(),
+        extent: 0,
     };
+    if tx.this_safe {
+        tx.extent = this_extent(f);
+        tx.promote(f);
+    }
     tx.body()?;
     tx.b.seal_all_blocks();
     tx.b.finalize(h.target);
@@ -394,6 +409,7 @@ impl Tx<'_, '_> {
                 return Err(JitError::Backend("block map".into()));
             };
             self.b.switch_to_block(block);
+            self.facts.clear();
             if headers.get(start).copied().unwrap_or(false) {
                 self.poll(start)?;
             }
@@ -488,6 +504,7 @@ impl Tx<'_, '_> {
         }
         // The budget ran out at or before the block's last instruction, so
         // a fault returned above; this point is never reached.
+        self.facts.clear();
         let wd = self.iconst(0);
         self.b.def_var(self.left, wd);
         let last = self.iconst(1);
@@ -560,6 +577,9 @@ impl Tx<'_, '_> {
                 }
                 self.b.ins().jump(cont, &[]);
                 self.b.switch_to_block(cont);
+                // The callee may have written this instance.
+                self.reload_slots(|_, _| true);
+                self.facts.clear();
             }
             _ => self.emit(inst)?,
         }
@@ -598,6 +618,9 @@ impl<'a> Tx<'a, '_> {
             std::mem::replace(&mut self.vars, vars),
             std::mem::replace(&mut self.this_safe, true),
             self.ret_to.replace(cont),
+            std::mem::take(&mut self.promoted),
+            std::mem::take(&mut self.facts),
+            std::mem::replace(&mut self.extent, extent),
         );
         self.inlined += g.code.len();
         let pc = self.pc;
@@ -610,9 +633,124 @@ impl<'a> Tx<'a, '_> {
             self.vars,
             self.this_safe,
             self.ret_to,
+            self.promoted,
+            self.facts,
+            self.extent,
         ) = saved;
         r?;
         self.b.switch_to_block(call);
+        Ok(())
+    }
+}
+
+impl Tx<'_, '_> {
+    /// Declares the promoted slots of `f` and loads them (`promote.rs`).
+    fn promote(&mut self, f: &Func) {
+        for (off, ty) in promote::slots(f) {
+            let v = self.b.declare_var(class_type(ty.class()));
+            self.promoted.insert(off, (ty, v));
+        }
+        self.reload_slots(|_, _| true);
+    }
+
+    /// Reloads from the image every promoted slot `which(offset, size)`
+    /// selects: something may have written it.
+    pub fn reload_slots(&mut self, which: impl Fn(u32, u32) -> bool) {
+        let mut todo: Vec<(u32, MemTy, Variable)> = self
+            .promoted
+            .iter()
+            .filter(|(off, (ty, _))| which(**off, ty.size()))
+            .map(|(off, (ty, v))| (*off, *ty, *v))
+            .collect();
+        todo.sort_by_key(|t| t.0);
+        for (off, ty, var) in todo {
+            let at = self.b.ins().iadd_imm_s(self.this, off as i64);
+            let p = self.b.ins().iadd(self.image, at);
+            let v = self.load(ty, p);
+            self.b.def_var(var, v);
+        }
+    }
+
+    /// A native pointer to `size` bytes at `a` without a check, when the
+    /// block's facts prove them inside `this .. this + extent`.
+    pub fn proved_pointer(&mut self, a: Addr, size: u32) -> Option<Value> {
+        self.proved_range(a, size)?;
+        let Base::Reg(r) = a.base else { return None };
+        let v = self.get(r).ok()?;
+        let at = self.b.ins().iadd_imm_s(v, a.offset as i64);
+        Some(self.b.ins().iadd(self.image, at))
+    }
+
+    /// The bytes `this + [lo, hi)` a register access may touch, when the
+    /// facts prove them inside the proved extent.
+    fn proved_range(&self, a: Addr, size: u32) -> Option<(u64, u64)> {
+        let Base::Reg(r) = a.base else { return None };
+        let Some(Fact::This(lo, hi)) = self.facts.get(&r).copied() else {
+            return None;
+        };
+        let lo = lo.checked_add(a.offset as i64)?;
+        let end = hi.checked_add(a.offset as i64)?.checked_add(size as i64)?;
+        (self.this_safe && lo >= 0 && end as u64 <= self.extent).then_some((lo as u64, end as u64))
+    }
+
+    /// Every instruction but control: the slots and facts of `promote.rs`
+    /// around `emit_plain`.
+    pub fn emit(&mut self, inst: &Inst) -> Result<(), JitError> {
+        match *inst {
+            Inst::Load { dst, ty, addr } if addr.base == Base::This => {
+                if let Some(&(t, var)) = self.promoted.get(&addr.offset) {
+                    if t == ty {
+                        let v = self.b.use_var(var);
+                        return self.set(dst, v);
+                    }
+                }
+                self.emit_plain(inst)?;
+            }
+            Inst::Store { src, ty, addr } if addr.base == Base::This => {
+                self.emit_plain(inst)?;
+                if let Some(&(t, var)) = self.promoted.get(&addr.offset) {
+                    if t == ty {
+                        // What a load of the stored bytes gives back.
+                        let v = self.get(src)?;
+                        let v = self.wrap(v, ty);
+                        self.b.def_var(var, v);
+                    }
+                }
+            }
+            Inst::Store { addr, .. } | Inst::StoreBit { addr, .. }
+                if matches!(addr.base, Base::Reg(_)) =>
+            {
+                let size = match *inst {
+                    Inst::Store { ty, .. } => ty.size(),
+                    _ => 1,
+                };
+                let range = self.proved_range(addr, size);
+                self.emit_plain(inst)?;
+                match range {
+                    Some((lo, end)) => {
+                        self.reload_slots(|off, n| (off as u64) < end && lo < off as u64 + n as u64)
+                    }
+                    None => self.reload_slots(|_, _| true),
+                }
+            }
+            Inst::Store { .. }
+            | Inst::StoreBit { .. }
+            | Inst::Copy { .. }
+            | Inst::Builtin { .. } => {
+                self.emit_plain(inst)?;
+                self.reload_slots(|_, _| true);
+            }
+            _ => self.emit_plain(inst)?,
+        }
+        if let Inst::Check { val, lo, hi, .. } = *inst {
+            self.facts.insert(val, Fact::Range(lo, hi));
+        } else if let Some(d) = promote::writes(inst) {
+            let new = promote::derive(inst, &self.facts, self.extent);
+            self.facts.remove(&d);
+            if let Some((r, f)) = new {
+                self.facts.insert(r, f);
+            }
+        }
         Ok(())
     }
 }
