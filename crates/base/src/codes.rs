@@ -308,6 +308,11 @@ codes! {
     E214 => "bad __QUERYINTERFACE or __QUERYPOINTER",
         "CODESYS's `__QUERYINTERFACE(source, dest)` takes two arguments: an interface value (a variable, member, element or call result; assign an instance to an interface variable first) and an interface variable, member or element, which it sets to the source's instance when that instance's class implements dest's interface (the result TRUE), or to no instance (FALSE). `__QUERYPOINTER(source, dest)` takes an interface value and a pointer variable, which it sets to the address of the source's instance (TRUE) or to 0 (FALSE).";
 
+    E215 => "unknown namespace",
+        "A `USING` names a namespace that no `NAMESPACE ... END_NAMESPACE` of the project declares (namespaces are named from the global one: `USING Plant.Motion;`, or relative to the enclosing namespace).";
+    E216 => "ambiguous name from USING",
+        "The name is declared in none of the enclosing namespaces but in two or more of the namespaces named by `USING`: qualify it (`Motion.Clamp`) to say which one is meant.";
+
     // ---- Allen-Bradley SLC-500 ladder (automat-dialect, slc/) ----
     E230 => "unknown SLC-500 instruction",
         "A word of a rung is no SLC-500 instruction (nor `BST`, `NXB`, `BND`, `SOR`, `EOR`). docs/allen-bradley.md lists the instructions automat runs.";
