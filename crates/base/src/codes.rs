@@ -292,7 +292,7 @@ codes! {
     E206 => "unknown method",
         "The call names no method of the class or interface of its instance (methods are looked up in the class and its bases, and for interface variables in the interface and the interfaces it extends).";
     E207 => "method not accessible",
-        "A PRIVATE method or property is callable only from the methods and body of its own class, a PROTECTED one also from derived classes, an INTERNAL one from the same namespace (here: the same project).";
+        "A PRIVATE method or property is callable only from the methods and body of its own class, a PROTECTED one also from derived classes, an INTERNAL one from code of the same namespace (not the nested ones; a class outside any namespace: code outside namespaces).";
     E208 => "THIS or SUPER out of place",
         "`THIS` is the current instance, inside a method or the body of a function block or class; `SUPER` its base part, only in a class that EXTENDS another. Write them dereferenced: `THIS^.x`, `SUPER^.m()`.";
     E209 => "duplicate method",
