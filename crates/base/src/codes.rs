@@ -256,7 +256,7 @@ codes! {
     E177 => "invalid name in PLCopen XML",
         "A `name`, `typeName`, `instanceName`, `label` or a variable of a contact or coil is not an IEC 61131-3 identifier (letters, digits and underscores, not starting with a digit).";
     E178 => "not expressible in PLCopen XML",
-        "`automat export` met a construct TC6 XML has no place for: a VAR_GLOBAL outside a CONFIGURATION, VAR_ACCESS or VAR_CONFIG, connections of a program instance, an `ARRAY [*]`, an R_EDGE/F_EDGE input, a vendor dialect. Move it into a form the format has (globals into a configuration) or leave the project in ST.";
+        "`automat export` met a construct TC6 XML has no place for: a VAR_GLOBAL outside a CONFIGURATION, VAR_ACCESS or VAR_CONFIG, connections of a program instance, an `ARRAY [*]`, an R_EDGE/F_EDGE input, a vendor dialect, a class, interface or NAMESPACE (and a POU's USING). Move it into a form the format has (globals into a configuration) or leave the project in ST.";
     E180 => "invalid operand",
         "Festo FST dialect: the operand cannot be written by this instruction: inputs (`In.m`, `IWn`) are read-only (FST's \"invalid operand, I0.0\"), SET/RESET/SHIFT take a bit operand, INC/DEC a word, and a LOAD's destinations must have the type of what it loaded.";
     E181 => "SET or RESET missing",

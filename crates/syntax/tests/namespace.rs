@@ -47,7 +47,10 @@ fn a_missing_end_namespace_is_one_error() {
         errors("NAMESPACE N\nFUNCTION F : INT F := 1; END_FUNCTION\n"),
         [("E005", 3)]
     );
-    assert_eq!(errors("NAMESPACE N\nUSING ;\nEND_NAMESPACE\n"), [("E005", 2)]);
+    assert_eq!(
+        errors("NAMESPACE N\nUSING ;\nEND_NAMESPACE\n"),
+        [("E005", 2)]
+    );
 }
 
 #[test]
@@ -78,13 +81,17 @@ END_PROGRAM";
         .iter()
         .map(|i| match i {
             Item::Pou(p) => interner.name(p.name.sym),
+            Item::Namespace(n) if n.items.is_empty() => "(namespace)",
             _ => "?",
         })
         .collect();
-    assert_eq!(names, ["Motion.Clamp", "Motion.Twice", "Main"]);
+    assert_eq!(
+        names,
+        ["Motion.Clamp", "Motion.Twice", "(namespace)", "Main"]
+    );
     // The function's result keeps matching its (new) name.
     let callee_of = |pou: usize| {
-        let Item::Pou(p) = &units[0].items[pou] else {
+        let Item::Pou(p) = &units[0].items[if pou == 2 { 3 } else { pou }] else {
             panic!()
         };
         let Body::St(body) = &p.body;
@@ -118,7 +125,10 @@ fn deep_namespaces_do_not_overflow() {
     let src = "NAMESPACE N ".repeat(n) + &"END_NAMESPACE ".repeat(n);
     let mut interner = Interner::new();
     let parsed = automat_syntax::parse(FileId(0), &src, &mut interner);
-    assert!(parsed.diagnostics.iter().any(|d| d.message.contains("too deep")));
+    assert!(parsed
+        .diagnostics
+        .iter()
+        .any(|d| d.message.contains("too deep")));
     let mut units = vec![parsed.unit];
     automat_syntax::desugar_namespaces(&mut units, &mut interner);
 }

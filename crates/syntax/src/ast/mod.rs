@@ -57,7 +57,8 @@ pub enum Item {
     Interface(Box<oop::Interface>),
     /// `NAMESPACE name ... END_NAMESPACE`, or the USING clauses of one POU
     /// (a namespace without a name holding that POU);
-    /// `desugar_namespaces` replaces it by its items, renamed.
+    /// `desugar_namespaces` moves its items out, renamed, and leaves it
+    /// empty (for export, which refuses it).
     Namespace(Box<Namespace>),
 }
 

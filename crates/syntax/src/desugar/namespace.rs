@@ -32,8 +32,9 @@ use automat_base::{Code, Diagnostic, Interner, Span, Symbol};
 use std::collections::{HashMap, HashSet};
 
 /// Replaces every namespace of `units` by its items under their qualified
-/// names and rewrites the references to them (a project without
-/// NAMESPACE is left untouched). Diagnostics: E215, E216.
+/// names, followed by the namespace emptied of them, and rewrites the
+/// references (a project without NAMESPACE is left untouched).
+/// Diagnostics: E215, E216.
 pub fn desugar_namespaces(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Diagnostic> {
     let any = units
         .iter()
@@ -58,7 +59,20 @@ pub fn desugar_namespaces(units: &mut [SourceUnit], interner: &mut Interner) -> 
         let items = std::mem::take(&mut u.items);
         let mut out = Vec::with_capacity(items.len());
         for item in items {
+            // The namespace stays, emptied, after its items: later stages
+            // ignore it, export refuses it (TC6 XML has no namespaces).
+            let husk = match &item {
+                Item::Namespace(n) => Some(Item::Namespace(Box::new(Namespace {
+                    name: n.name.clone(),
+                    internal: n.internal,
+                    usings: n.usings.clone(),
+                    items: Vec::new(),
+                    span: n.span,
+                }))),
+                _ => None,
+            };
             r.flatten(item, &global, &mut out);
+            out.extend(husk);
         }
         u.items = out;
     }
