@@ -328,6 +328,15 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
                 .map(|map| automat_project::charts::of_sources(map, &args.libs))
                 .unwrap_or_default(),
         };
+        // The LD and FBD drawings, for the HMI.
+        let sources = match loaded.project.as_ref() {
+            Some(p) => Ok(p.sources.clone()),
+            None => crate::files::collect(&args.paths),
+        };
+        opts.drawings = sources
+            .and_then(|f| crate::files::load(&f))
+            .map(|map| crate::draw::live::drawings(&map))
+            .unwrap_or_default();
         opts
     });
     // The live view, unless a server runs without a terminal (a service);

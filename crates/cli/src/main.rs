@@ -44,6 +44,7 @@ mod plot;
 mod project_run;
 mod realtime_run;
 mod retain_run;
+mod test_pool;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

@@ -135,11 +135,17 @@ fn the_hmi_in_headless_chromium() {
     let plc = start(&crane_dir, &crane_dir, &["--virtual-clock"]);
     let load_dir = counters();
     let load = start(&load_dir.join("load.st"), &load_dir, &[]);
+    let ld_dir = temp("crane-ld");
+    for f in ["automat.toml", "crane.xml"] {
+        std::fs::copy(root().join("examples/crane-ld").join(f), ld_dir.join(f)).expect("copy");
+    }
+    let ld = start(&ld_dir, &ld_dir, &["--virtual-clock"]);
     let shots = temp("shots");
     let out = Command::new("python3")
         .arg(root().join("crates/cli/tests/hmi/hmi_browser.py"))
         .args([&plc.url, &plc.token, &load.url, &load.token])
         .arg(&shots)
+        .args([&ld.url, &ld.token])
         .output()
         .expect("python3");
     let text = String::from_utf8_lossy(&out.stdout);
@@ -150,7 +156,9 @@ fn the_hmi_in_headless_chromium() {
     if std::env::var_os("UPDATE_DOCS").is_some() {
         let docs = root().join("docs/hmi");
         std::fs::create_dir_all(&docs).expect("docs/hmi");
-        for view in ["overview", "watch", "charts", "trends", "plant", "fault"] {
+        for view in [
+            "overview", "watch", "charts", "drawings", "trends", "plant", "fault",
+        ] {
             let name = format!("{view}.png");
             std::fs::copy(shots.join(&name), docs.join(&name)).expect("screenshot");
         }

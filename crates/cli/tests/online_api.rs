@@ -156,6 +156,24 @@ fn festo_stl_programs_online_status() {
     interrupt(plc);
 }
 
+/// The LD/FBD drawings of the HMI through the API: the PID loop in FBD
+/// (`GET /api/v1/drawings` resolved against its instances, pins of a
+/// function block instance, variable elements).
+#[test]
+fn fbd_drawings_through_the_api() {
+    python_ready();
+    let dir = std::env::temp_dir().join(format!("automat-online-fbd-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let src = root().join("examples/pid-temperature-fbd");
+    for f in ["automat.toml", "pid.xml"] {
+        std::fs::copy(src.join(f), dir.join(f)).expect("copy");
+    }
+    let plc = start(&dir, &["--listen", "0", "--virtual-clock"]);
+    client("fbd", &plc);
+    interrupt(plc);
+}
+
 #[test]
 fn the_plant_is_read_and_operated_through_the_api() {
     python_ready();

@@ -47,6 +47,9 @@ fn every_example_scenario_and_conformance_program_passes() {
     assert!(stdout.contains(
         "ok examples/crane/scenarios/normal.scn (normal cycle: both cycles, then rest)\n"
     ));
+    assert!(stdout.contains(
+        "ok examples/crane-slc/scenarios/normal.scn (normal cycle: both cycles, then rest)\n"
+    ));
     assert!(stdout.contains("ok tests/conformance/tp.st\n"));
 }
 

@@ -123,6 +123,12 @@ pub fn is_slc_file(name: &str) -> bool {
     slc::is_slc_file(name)
 }
 
+/// The drawing sheet of an SLC-500 program file (`LAD2`, `2`, or its
+/// name) in the `.slc` files of `map`, for `automat draw`.
+pub fn slc_sheet(map: &SourceMap, pou: &str) -> Option<automat_plcopen::sheet::Sheet> {
+    slc::sheet(map, pou)
+}
+
 /// Is `name` a CODESYS V2.3 text export (`*.exp`), read as Structured
 /// Text when a folder is given (the `(* @... *)` markers are comments)?
 pub fn is_export_file(name: &str) -> bool {

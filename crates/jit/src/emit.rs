@@ -468,7 +468,134 @@ impl Tx<'_, '_> {
         {
             return self.time_add_sub(t == TimeFn::AddTime, d, *a, *b, op, first, count, site);
         }
+        if let (Builtin::Convert(from, to), Some(d), [a]) = (op, dst, args.as_slice()) {
+            if self.convert_inline(from, to, d, *a)? {
+                return Ok(());
+            }
+        }
         self.builtin_call(op, dst, first, count, site)
+    }
+
+    /// The numeric `*_TO_*` conversions that cannot fault, inline, with
+    /// the shared implementation's exact results (`automat_iec::convert`
+    /// on the register as `automat_engine::builtins::to_value` reads it):
+    /// integers and BOOL to REAL/LREAL, REAL <-> LREAL, integer to integer
+    /// (wrap), to and from BOOL, and REAL/LREAL to an integer (halves to
+    /// even, saturating, NaN 0). Returns `false` for every other pair,
+    /// which calls the helper. The register classes are checked so a pair
+    /// this does not expect also takes the helper.
+    fn convert_inline(
+        &mut self,
+        from: automat_iec::Elementary,
+        to: automat_iec::Elementary,
+        dst: u32,
+        src: u32,
+    ) -> Result<bool, JitError> {
+        use automat_iec::Elementary as E;
+        let class_of = |e: E| match e {
+            E::Real => RegClass::F32,
+            E::Lreal => RegClass::F64,
+            _ => RegClass::I64,
+        };
+        let numeric = |e: E| e == E::Bool || e.is_integral() || e.is_real();
+        if !numeric(from)
+            || !(to == E::Bool || to.is_int() || to.is_bit_string() || to.is_real())
+            || self.class(src)? != class_of(from)
+            || self.class(dst)? != class_of(to)
+        {
+            return Ok(false);
+        }
+        let x = self.get(src)?;
+        let real_ty = |e: E| if e == E::Real { types::F32 } else { types::F64 };
+        let v = match (from, to) {
+            (f, t) if f == t => x,
+            // `Bool`: the register's low bit (`to_value`).
+            (E::Bool, t) => {
+                let one = self.b.ins().band_imm_u(x, 1);
+                if t.is_real() {
+                    self.b.ins().fcvt_from_uint(real_ty(t), one)
+                } else {
+                    one
+                }
+            }
+            (f, E::Bool) => {
+                let c = if f.is_real() {
+                    let z = if f == E::Real {
+                        self.b.ins().f32const(0.0)
+                    } else {
+                        self.b.ins().f64const(0.0)
+                    };
+                    // NaN is not 0: TRUE.
+                    self.b.ins().fcmp(FloatCC::NotEqual, x, z)
+                } else {
+                    self.b.ins().icmp_imm_s(IntCC::NotEqual, x, 0)
+                };
+                self.bool64(c)
+            }
+            (E::Real, E::Lreal) => self.b.ins().fpromote(types::F64, x),
+            (E::Lreal, E::Real) => self.b.ins().fdemote(types::F32, x),
+            // One rounding straight from the 64-bit integer (the value
+            // `to_value` reads: sign-extended for signed types, the bits
+            // as they are for unsigned ones and bit strings).
+            (f, t) if t.is_real() && f.is_signed_int() => {
+                self.b.ins().fcvt_from_sint(real_ty(t), x)
+            }
+            (f, t) if t.is_real() && (f.is_unsigned_int() || f.is_bit_string()) => {
+                self.b.ins().fcvt_from_uint(real_ty(t), x)
+            }
+            (f, t) if f.is_integral() && (t.is_int() || t.is_bit_string()) => self.wrap_to(x, t),
+            (f, t) if f.is_real() && t.is_int() => {
+                let w = if f == E::Real {
+                    self.b.ins().fpromote(types::F64, x)
+                } else {
+                    x
+                };
+                let r = self.b.ins().nearest(w);
+                let Some(bits) = t.bit_width() else {
+                    return Ok(false);
+                };
+                if t.is_signed_int() {
+                    // Saturating, NaN 0; then clamped to the type.
+                    let v = self.b.ins().fcvt_to_sint_sat(types::I64, r);
+                    if bits == 64 {
+                        v
+                    } else {
+                        let hi = self.iconst((1i64 << (bits - 1)) - 1);
+                        let lo = self.iconst(-(1i64 << (bits - 1)));
+                        let v = self.b.ins().smin(v, hi);
+                        self.b.ins().smax(v, lo)
+                    }
+                } else {
+                    let v = self.b.ins().fcvt_to_uint_sat(types::I64, r);
+                    if bits == 64 {
+                        v
+                    } else {
+                        let hi = self.iconst((1i64 << bits) - 1);
+                        self.b.ins().umin(v, hi)
+                    }
+                }
+            }
+            _ => return Ok(false),
+        };
+        self.set(dst, v)?;
+        Ok(true)
+    }
+
+    /// The low bits of `x` for integer or bit-string type `t`, sign-extended
+    /// for signed integers, zero-extended otherwise (`wrap_int`).
+    fn wrap_to(&mut self, x: Value, t: automat_iec::Elementary) -> Value {
+        let narrow = match t.bit_width() {
+            Some(8) => types::I8,
+            Some(16) => types::I16,
+            Some(32) => types::I32,
+            _ => return x,
+        };
+        let n = self.b.ins().ireduce(narrow, x);
+        if t.is_signed_int() {
+            self.b.ins().sextend(types::I64, n)
+        } else {
+            self.b.ins().uextend(types::I64, n)
+        }
     }
 
     /// ADD_TIME / SUB_TIME (TIME `+`/`-`, the timers' elapsed time): the

@@ -57,6 +57,13 @@ pub struct Shared {
     pub interrupt: Interrupt,
 }
 
+// SAFETY: `program` points into the `Box<Program>` of the `Jit` that owns
+// this `Shared` (also boxed); both move together to another thread and the
+// program is only read. So a whole `Jit` can be handed to another thread
+// between runs (`automat test` lends compiled programs to its workers); a
+// run itself never crosses threads (`run_func` takes `&mut self`).
+unsafe impl Send for Shared {}
+
 /// The first poll mark of a run with `left` instructions of budget.
 pub fn first_mark(left: i64) -> i64 {
     left.saturating_sub(POLL_INSTRUCTIONS as i64)

@@ -513,6 +513,41 @@ const Charts = {
   render() { if (this.drawn) this.drawn.update(S.values); },
 };
 
+// ---------------------------------------------------------------- LD/FBD drawings
+
+const Drawings = {
+  list: [],
+  paths() { return S.view === 'drawings' && this.drawn ? this.drawn.paths : []; },
+  init() {
+    $('#drawing-select').addEventListener('change', () => { this.fillInstances(); this.draw(); });
+    $('#drawing-instance').addEventListener('change', () => this.draw());
+  },
+  async load() {
+    const r = await api('GET', '/api/v1/drawings');
+    this.list = r.drawings;
+    $('#drawing-select').replaceChildren(...this.list.map((d, i) => el('option', { value: String(i), text: `${d.pou} (${d.lang}, ${d.file.split('/').pop()})` })));
+    this.fillInstances();
+  },
+  fillInstances() {
+    const d = this.list[+$('#drawing-select').value];
+    $('#drawing-instance').replaceChildren(...(d ? d.instances : []).map((p) => el('option', { value: p, text: p })));
+  },
+  show() {
+    if (!this.list.length) { $('#drawing-area').replaceChildren(el('p', { class: 'hint', text: 'The program has no LD or FBD body.' })); return; }
+    this.draw();
+  },
+  draw() {
+    const d = this.list[+$('#drawing-select').value];
+    if (!d) return;
+    const inst = $('#drawing-instance').value || '';
+    this.drawn = window.LdDrawing.draw(d, inst);
+    $('#drawing-area').replaceChildren(this.drawn.svg);
+    Watcher.update();
+    kick();
+  },
+  render() { if (this.drawn) this.drawn.update(S.values); },
+};
+
 // ---------------------------------------------------------------- trends
 
 const COLORS = ['#1f5fbf', '#e0462b', '#2e9d4f', '#9b51e0', '#d98b00', '#00838f', '#c2185b', '#5d4037', '#455a64', '#7cb342'];
@@ -836,7 +871,7 @@ const Plant = {
 
 // ---------------------------------------------------------------- views
 
-const Views = { overview: Overview, watch: Watch, charts: Charts, trends: Trends, plant: Plant };
+const Views = { overview: Overview, watch: Watch, charts: Charts, drawings: Drawings, trends: Trends, plant: Plant };
 S.views = Views;
 
 function setView(name) {
@@ -877,13 +912,13 @@ async function start() {
   $('#who').textContent = `${S.user} (${S.role})`;
   if (!started) {
     started = true;
-    Overview.init(); Watch.init(); Charts.init(); Trends.init();
+    Overview.init(); Watch.init(); Charts.init(); Drawings.init(); Trends.init();
     setInterval(poll, 500);
   }
   await poll();
   if (!S.token) return;
   Lists.load();
-  try { await loadSymbols(); await Charts.load(); } catch (e) { say(e.message, true); }
+  try { await loadSymbols(); await Charts.load(); await Drawings.load(); } catch (e) { say(e.message, true); }
   Watcher.open();
   setView(location.hash.slice(1) || 'overview');
 }

@@ -40,14 +40,21 @@ fn program_instances(program: &Program, pou: &str, out: &mut Vec<String>) {
     }
 }
 
+/// The paths of the instances that run POU `pou`: program instances in
+/// task order, then function block instances in the tree.
+pub fn instances_of(pou: &str, program: &Program, tree: &[Node]) -> Vec<String> {
+    let mut at = Vec::new();
+    program_instances(program, pou, &mut at);
+    fb_instances(tree, pou, &mut at);
+    at
+}
+
 /// The answer: every chart with its instances (computed once per server).
 pub fn answer(charts: &[PouChart], program: &Program, tree: &[Node]) -> Value {
     let list: Vec<Value> = charts
         .iter()
         .map(|c| {
-            let mut at = Vec::new();
-            program_instances(program, &c.pou, &mut at);
-            fb_instances(tree, &c.pou, &mut at);
+            let at = instances_of(&c.pou, program, tree);
             let mut v = serde_json::to_value(c).unwrap_or(Value::Null);
             v["instances"] = json!(at);
             v

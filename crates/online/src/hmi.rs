@@ -13,6 +13,7 @@ use axum::response::{IntoResponse, Response};
 const INDEX: &str = include_str!("../hmi/index.html");
 const APP_JS: &str = include_str!("../hmi/app.js");
 const CHARTS_JS: &str = include_str!("../hmi/charts.js");
+const DRAWINGS_JS: &str = include_str!("../hmi/drawings.js");
 const MIMIC_JS: &str = include_str!("../hmi/mimic.js");
 const APP_CSS: &str = include_str!("../hmi/app.css");
 
@@ -53,6 +54,10 @@ pub async fn charts_js() -> Response {
     asset("text/javascript; charset=utf-8", CHARTS_JS)
 }
 
+pub async fn drawings_js() -> Response {
+    asset("text/javascript; charset=utf-8", DRAWINGS_JS)
+}
+
 pub async fn mimic_js() -> Response {
     asset("text/javascript; charset=utf-8", MIMIC_JS)
 }
@@ -72,12 +77,13 @@ mod tests {
         for file in [
             "/hmi/app.js",
             "/hmi/charts.js",
+            "/hmi/drawings.js",
             "/hmi/mimic.js",
             "/hmi/app.css",
         ] {
             assert!(INDEX.contains(&format!("\"{file}\"")), "{file}");
         }
-        for text in [INDEX, APP_JS, CHARTS_JS, MIMIC_JS, APP_CSS] {
+        for text in [INDEX, APP_JS, CHARTS_JS, DRAWINGS_JS, MIMIC_JS, APP_CSS] {
             assert!(!text.contains("http://") || text.contains("http://www.w3.org/2000/svg"));
             assert!(!text.contains("https://"));
         }

@@ -13,6 +13,7 @@
 pub mod api;
 pub mod auth;
 pub mod charts;
+pub mod drawings;
 pub mod hmi;
 pub mod listen;
 pub mod plant;
@@ -45,6 +46,8 @@ pub struct Options {
     pub max_watchers: usize,
     /// The SFC charts of the program (`GET /api/v1/charts`).
     pub charts: Vec<automat_project::charts::PouChart>,
+    /// The LD and FBD drawings of the program (`GET /api/v1/drawings`).
+    pub drawings: Vec<drawings::Drawing>,
     /// The project's name (`[project] name`) for `status`; `None` for
     /// source files.
     pub project: Option<String>,
@@ -63,6 +66,7 @@ impl Options {
             max_connections: 128,
             max_watchers: 32,
             charts: Vec::new(),
+            drawings: Vec::new(),
             project: None,
             cycle_time_ns: 10_000_000,
         }
@@ -76,6 +80,8 @@ pub struct App {
     pub watchers: Arc<Semaphore>,
     /// The answer of `GET /api/v1/charts`.
     pub charts: Arc<Option<serde_json::Value>>,
+    /// The answer of `GET /api/v1/drawings`.
+    pub drawings: Arc<Option<serde_json::Value>>,
     /// What `status` says of the program: its project, cycle and tasks
     /// (fixed while it runs).
     pub about: Arc<serde_json::Value>,
@@ -106,6 +112,7 @@ pub fn router(app: App) -> Router {
         .route("/", get(hmi::index))
         .route("/hmi/app.js", get(hmi::app_js))
         .route("/hmi/charts.js", get(hmi::charts_js))
+        .route("/hmi/drawings.js", get(hmi::drawings_js))
         .route("/hmi/mimic.js", get(hmi::mimic_js))
         .route("/hmi/app.css", get(hmi::app_css))
         .route("/api/v1/status", get(api::status))
@@ -119,6 +126,7 @@ pub fn router(app: App) -> Router {
         .route("/api/v1/login", post(api::login))
         .route("/api/v1/watch", get(watch::watch))
         .route("/api/v1/charts", get(charts::charts))
+        .route("/api/v1/drawings", get(drawings::drawings))
         .route("/api/v1/plant", get(plant::get).post(plant::post))
         .layer(DefaultBodyLimit::max(MAX_BODY))
         .with_state(app)
@@ -152,6 +160,7 @@ pub fn start(session: Arc<Session>, opts: Options) -> Result<Server, String> {
     let scheme = if tls.is_some() { "https" } else { "http" };
     let tree = session.symbols("").unwrap_or_default();
     let charts = Arc::new(Some(charts::answer(&opts.charts, session.program(), &tree)));
+    let drawings = Arc::new(Some(drawings::answer(&opts.drawings, &session, &tree)));
     let tasks: Vec<serde_json::Value> = session
         .program()
         .tasks
@@ -173,6 +182,7 @@ pub fn start(session: Arc<Session>, opts: Options) -> Result<Server, String> {
     let app = App {
         about,
         charts,
+        drawings,
         session,
         auth: Arc::new(auth::Auth::new(opts.token.clone(), opts.users.clone())),
         watchers: Arc::new(Semaphore::new(opts.max_watchers.max(1))),

@@ -121,6 +121,14 @@ fn element(imp: &mut Imp, e: Node, pou: &str) -> Option<Element> {
         "continuation" => Kind::Continuation {
             name: name_of(imp, "name")?.text.to_ascii_uppercase(),
         },
+        "vendorElement" => {
+            let msg = format!(
+                "POU `{pou}`, localId {id}: {}, not an IEC 61131-3 element: automat cannot run it",
+                vendor_element(imp.src, e)
+            );
+            imp.error(Code::E171, span, msg);
+            return None;
+        }
         _ => {
             imp.error(
                 Code::E171,
@@ -226,5 +234,32 @@ fn pin_in(imp: &mut Imp, n: Node, var: Option<Node>, in_out: bool) -> PinIn {
         in_out,
         conns,
         span: imp.span(n),
+    }
+}
+
+/// What names a `vendorElement`: the tool whose data it carries (the
+/// `name` of its `addData` entries, a URI such as Beremiz's) and the text
+/// the tool shows for it (`alternativeText`).
+pub(crate) fn vendor_element(src: &str, e: Node) -> String {
+    let vendors: Vec<&str> = xml::child(e, "addData")
+        .into_iter()
+        .flat_map(|a| xml::children(a, "data"))
+        .filter_map(|d| xml::attr_str(d, "name"))
+        .map(str::trim)
+        .filter(|n| !n.is_empty())
+        .collect();
+    let alt = xml::child(e, "alternativeText")
+        .map(|a| xml::formatted(src, a).trimmed().text)
+        .unwrap_or_default();
+    let alt: String = alt.split_whitespace().collect::<Vec<_>>().join(" ");
+    let alt: String = alt.chars().take(60).collect();
+    let what = if alt.is_empty() {
+        String::new()
+    } else {
+        format!(" `{alt}`")
+    };
+    match vendors.as_slice() {
+        [] => format!("a vendor's element{what} (no `addData` names its tool)"),
+        vs => format!("a vendor's element{what} of `{}`", vs.join("`, `")),
     }
 }

@@ -87,6 +87,15 @@ impl Imp<'_> {
                 | "addData" => {}
                 // Read through the wired condition of a transition.
                 "inVariable" | "contact" | "leftPowerRail" => {}
+                "vendorElement" => {
+                    let sp = self.span(e);
+                    let what = crate::graph::vendor_element(self.src, e);
+                    self.error(
+                        Code::E171,
+                        sp,
+                        format!("POU `{pou_name}`: {what}, not an IEC 61131-3 element: automat cannot run it"),
+                    );
+                }
                 other => {
                     let sp = self.span(e);
                     self.error(

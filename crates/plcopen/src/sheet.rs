@@ -327,3 +327,26 @@ pub fn sheet(src: &str, pou: &str) -> Result<Found, String> {
         nodes,
     }))
 }
+
+/// The POUs of PLCopen file text `src` whose body is LD or FBD, in file
+/// order (what the HMI draws live; SFC charts have their own view). Empty
+/// when the text is not XML.
+pub fn graphical_pous(src: &str) -> Vec<String> {
+    let opts = ParsingOptions {
+        allow_dtd: false,
+        nodes_limit: crate::NODES_LIMIT,
+        ..ParsingOptions::default()
+    };
+    let Ok(doc) = Document::parse_with_options(src, opts) else {
+        return Vec::new();
+    };
+    doc.descendants()
+        .filter(|n| xml::is(*n, "pou"))
+        .filter(|p| {
+            xml::child(*p, "body")
+                .and_then(|b| xml::elements(b).next())
+                .is_some_and(|b| matches!(b.tag_name().name(), "LD" | "FBD"))
+        })
+        .filter_map(|p| xml::attr_str(p, "name").map(|n| n.trim().to_string()))
+        .collect()
+}

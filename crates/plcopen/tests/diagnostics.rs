@@ -204,6 +204,28 @@ fn unknown_name_in_a_contact_names_the_contact() {
 }
 
 #[test]
+fn vendor_elements_name_their_tool() {
+    let t = program(
+        BOOLS,
+        "FBD",
+        r#"<vendorElement localId="4"><position x="0" y="0"/><alternativeText><xhtml:p xmlns:xhtml="http://www.w3.org/1999/xhtml">Python   hook</xhtml:p></alternativeText><addData><data name="http://www.beremiz.org/python" handleUnknown="discard"/></addData></vendorElement>"#,
+    );
+    expect(
+        &t,
+        &["5:1: error[E171]: POU `P`, localId 4: a vendor's element `Python hook` of `http://www.beremiz.org/python`, not an IEC 61131-3 element: automat cannot run it"],
+    );
+    let t = program(
+        BOOLS,
+        "LD",
+        r#"<vendorElement localId="5"><position x="0" y="0"/><alternativeText/></vendorElement>"#,
+    );
+    expect(
+        &t,
+        &["5:1: error[E171]: POU `P`, localId 5: a vendor's element (no `addData` names its tool)"],
+    );
+}
+
+#[test]
 fn element_without_local_id() {
     let t = program(
         BOOLS,

@@ -255,12 +255,17 @@ impl Sim {
 
     fn write_inputs(&mut self, image: &mut [u8]) {
         for k in 0..self.inputs.len() {
-            let Some(b) = self.inputs.get(k).and_then(|&i| self.bindings.get(i)) else {
+            let Some(&bi) = self.inputs.get(k) else {
                 continue;
             };
-            let (signal, place) = (b.signal, b.place.clone());
+            let Some(signal) = self.bindings.get(bi).map(|b| b.signal) else {
+                continue;
+            };
             let v = self.input_value(signal);
-            image::write(image, &place, v);
+            // The place borrowed again, not cloned: this runs every scan.
+            if let Some(b) = self.bindings.get(bi) {
+                image::write(image, &b.place, v);
+            }
         }
     }
 

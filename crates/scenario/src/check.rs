@@ -755,10 +755,50 @@ fn to_val(v: Value) -> Val {
     }
 }
 
+/// The value at `p` as the judge sees it: what `image::read` then `to_val`
+/// give, read straight from the bytes for the elementary types the
+/// scenarios name every scan (BOOL, integers and bit strings, REAL,
+/// LREAL, TIME), without going through `automat_iec::Value`; every other
+/// place takes the general path.
+fn read_place(image: &[u8], p: &Place) -> Val {
+    fn at<const N: usize>(image: &[u8], offset: u32) -> Option<[u8; N]> {
+        let start = usize::try_from(offset).ok()?;
+        image.get(start..start.checked_add(N)?)?.try_into().ok()
+    }
+    let ty = match &p.ty {
+        PlaceType::Elementary(e) => *e,
+        PlaceType::Enum { base, .. } if p.bit.is_none() => *base,
+        _ => return image::read(image, p).map_or(Val::N(f64::NAN), to_val),
+    };
+    let n = |v: Option<f64>| Val::N(v.unwrap_or(f64::NAN));
+    match ty {
+        E::Bool => match (at::<1>(image, p.offset), p.bit) {
+            (Some([b]), Some(k)) => Val::B(k < 8 && b >> k & 1 != 0),
+            (Some([b]), None) => Val::B(b != 0),
+            (None, _) => Val::N(f64::NAN),
+        },
+        E::Sint => n(at(image, p.offset).map(|b| i8::from_le_bytes(b) as f64)),
+        E::Int => n(at(image, p.offset).map(|b| i16::from_le_bytes(b) as f64)),
+        E::Dint => n(at(image, p.offset).map(|b| i32::from_le_bytes(b) as f64)),
+        E::Lint | E::Time | E::Ltime => {
+            n(at(image, p.offset).map(|b| i64::from_le_bytes(b) as f64))
+        }
+        E::Usint | E::Byte => n(at(image, p.offset).map(|b| u8::from_le_bytes(b) as f64)),
+        E::Uint | E::Word => n(at(image, p.offset).map(|b| u16::from_le_bytes(b) as f64)),
+        E::Udint | E::Dword => n(at(image, p.offset).map(|b| u32::from_le_bytes(b) as f64)),
+        // Beyond i64 the general path saturates (`image::read`).
+        E::Ulint | E::Lword => n(at(image, p.offset)
+            .map(|b| i64::try_from(u64::from_le_bytes(b)).unwrap_or(i64::MAX) as f64)),
+        E::Real => n(at(image, p.offset).map(|b| f64::from(f32::from_le_bytes(b)))),
+        E::Lreal => n(at(image, p.offset).map(f64::from_le_bytes)),
+        _ => image::read(image, p).map_or(Val::N(f64::NAN), to_val),
+    }
+}
+
 impl Ref {
     pub fn read(&self, image: &[u8], sim: &Sim) -> Val {
         match &self.src {
-            Src::Place(p) => image::read(image, p).map_or(Val::N(f64::NAN), to_val),
+            Src::Place(p) => read_place(image, p),
             Src::Signal(i) => to_val(sim.plant().get(*i)),
             Src::Quantity(i) => Val::N(sim.plant().quantity(*i)),
         }

@@ -6,7 +6,10 @@
 //! right after a letter is part of the word (`T#1s`, `CraneStep#Rest1`). A
 //! `#` elsewhere starts a comment. A `+` or `-` stays in a word after `#`
 //! (`T#-1s`) and after the `e` of a number's exponent (`1e-3`); a `-`
-//! before a number is the parser's unary minus.
+//! before a number is the parser's unary minus. A `/` inside an SLC-500
+//! address (`B3:0/1`, `T4:0/DN`, `I:1/1`: a word with `:` after a file
+//! letter) is part of the word; write the flat form `B3/18` as `B3:1/2`,
+//! and a division of such an address with spaces (`N7:0 / 2`).
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Tok {
@@ -103,6 +106,9 @@ pub fn tokens(line: &str) -> Result<Vec<Token>, (usize, String)> {
                 b'[' => depth += 1,
                 b']' => depth = depth.saturating_sub(1),
                 _ if depth > 0 => {}
+                // `B3:0/1`, `T4:0/DN`, `I:1/1`: the bit of an SLC-500
+                // address (a word with `:` after a file letter) is part of it.
+                b'/' if slc_bit(b, start, i) => {}
                 b' ' | b'\t' | b'\r' | b'(' | b')' | b'=' | b'<' | b'>' | b'"' | b'*' | b'/'
                 | b',' => break,
                 b'+' | b'-' if !sign_in_word(b, start, i) => break,
@@ -123,6 +129,20 @@ pub fn tokens(line: &str) -> Result<Vec<Token>, (usize, String)> {
     Ok(out)
 }
 
+/// Whether the `/` at `i` is the bit separator of an SLC-500 address: the
+/// word so far is a file letter, digits, `:` and an element (`B3:0`,
+/// `I:1.2`, `T4:0`), and a bit number or name follows.
+fn slc_bit(b: &[u8], start: usize, i: usize) -> bool {
+    let word = b.get(start..i).unwrap_or(&[]);
+    word.first()
+        .is_some_and(|c| b"OISBTCRNFoisbtcrnf".contains(c))
+        && word.contains(&b':')
+        && word[1..]
+            .iter()
+            .all(|c| c.is_ascii_alphanumeric() || *c == b':' || *c == b'.')
+        && b.get(i + 1).is_some_and(u8::is_ascii_alphanumeric)
+}
+
 /// Whether the `+`/`-` at `i` belongs to the word that started at `start`:
 /// right after `#` (`T#-1s`), or the sign of an exponent (`1.5e-3`).
 fn sign_in_word(b: &[u8], start: usize, i: usize) -> bool {
@@ -140,6 +160,31 @@ mod tests {
 
     fn words(line: &str) -> Vec<Tok> {
         tokens(line).unwrap().into_iter().map(|t| t.tok).collect()
+    }
+
+    #[test]
+    fn slc_bit_addresses_are_one_word() {
+        let w = |s: &str| Tok::Word(s.into());
+        assert_eq!(
+            words("B3:0/1 AND T4:0/DN OR I:1.2/3 AND N7:0 / 2 = x/y"),
+            [
+                w("B3:0/1"),
+                w("AND"),
+                w("T4:0/DN"),
+                w("OR"),
+                w("I:1.2/3"),
+                w("AND"),
+                w("N7:0"),
+                Tok::Op("/"),
+                w("2"),
+                Tok::Op("="),
+                w("x"),
+                Tok::Op("/"),
+                w("y"),
+            ]
+        );
+        // The flat form stays a division: `B3/18` is written `B3:1/2`.
+        assert_eq!(words("B3/18"), [w("B3"), Tok::Op("/"), w("18")]);
     }
 
     #[test]

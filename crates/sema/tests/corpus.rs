@@ -226,9 +226,10 @@ fn is_generated_only_code(code: Code) -> bool {
 /// E150–E169: diagnostics of the vendor dialects, which need `--lib`;
 /// `crates/dialect/tests/corpus.rs` covers them.
 /// E15x/E16x: `crates/dialect/tests/corpus.rs`; E18x (Festo STL):
-/// `crates/dialect/tests/fst.rs`.
+/// `crates/dialect/tests/fst.rs`; E23x (SLC-500 ladder, `.slc` files):
+/// `crates/dialect/tests/slc.rs`.
 fn is_vendor_code(code: Code) -> bool {
-    ["E15", "E16", "E18"]
+    ["E15", "E16", "E18", "E23"]
         .iter()
         .any(|p| code.as_str().starts_with(p))
 }

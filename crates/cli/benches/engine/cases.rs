@@ -15,6 +15,11 @@ pub struct Case {
     pub read: fn(&Plc) -> Result<String, String>,
     /// The same algorithm in Rust; returns the same text.
     pub native: fn() -> String,
+    /// The same algorithm in C: its name in `kernels.c`.
+    pub c_name: &'static str,
+    /// The variables `automat run --print` shows for the whole-process
+    /// comparison with the C executable.
+    pub print: &'static [&'static str],
 }
 
 pub const SIEVE_N: i64 = 200_000;
@@ -51,6 +56,8 @@ END_PROGRAM
             scans: 1,
             read: |p| Ok(p.i32("SIEVE.COUNT")?.to_string()),
             native: || sieve(black_box(SIEVE_N)).to_string(),
+            c_name: "sieve",
+            print: &["SIEVE.COUNT"],
         },
         Case {
             name: "LREAL low-pass filter loop, 1,000,000 steps",
@@ -71,6 +78,8 @@ END_PROGRAM
             scans: 1,
             read: |p| Ok(format!("{:016x}", p.f64("FILTER.SUM")?.to_bits())),
             native: || format!("{:016x}", filter(black_box(FILTER_N)).to_bits()),
+            c_name: "filter",
+            print: &["FILTER.SUM"],
         },
         Case {
             name: "DWORD xorshift PRNG, 1,000,000 steps",
@@ -91,6 +100,8 @@ END_PROGRAM
             scans: 1,
             read: |p| Ok(format!("{:08x}", p.u32("PRNG.ACC")?)),
             native: || format!("{:08x}", xorshift(black_box(PRNG_N))),
+            c_name: "xorshift",
+            print: &["PRNG.ACC"],
         },
         Case {
             name: "DWORD bitwise CRC-32, 100,000 bytes",
@@ -117,6 +128,9 @@ END_PROGRAM
             scans: 1,
             read: |p| Ok(format!("{:08x}", p.u32("CRC.CRC")?)),
             native: || format!("{:08x}", crc32(black_box(CRC_N))),
+            c_name: "crc32",
+            // `CRC.CRC` would name the variable crc first, then its member CRC.
+            print: &["CRC"],
         },
         Case {
             name: "1,000 TON + R_TRIG + CTU per scan, 10,000 scans",
@@ -147,6 +161,8 @@ END_PROGRAM
                 ))
             },
             native: || fbs(black_box(FB_COUNT), black_box(FB_SCANS)),
+            c_name: "fbs",
+            print: &["FBS.C[1].CV", "FBS.C[1000].CV", "FBS.T[500].ET"],
         },
         Case {
             name: "string building: CONCAT/LEFT/INT_TO_STRING, 20,000 steps",
@@ -165,6 +181,8 @@ END_PROGRAM
             scans: 1,
             read: |p| Ok(format!("{} {}", p.i32("STRS.TOTAL")?, p.string("STRS.S")?)),
             native: || strings(black_box(STR_N)),
+            c_name: "strings",
+            print: &["STRS.TOTAL", "STRS.S"],
         },
     ]
 }

@@ -5,6 +5,7 @@
 //! is laid out automatically (`chart.rs`).
 
 mod chart;
+pub mod live;
 mod sheet;
 
 use crate::plot::layout::{Anchor, Diagram, Ink, Seg, Shape};
@@ -155,9 +156,19 @@ pub fn diagram_of(map: &automat_base::SourceMap, pou: &str) -> Result<Diagram, S
             Err(e) => return Err(format!("{}: not well-formed XML: {e}", f.name)),
         }
     }
+    // SLC-500 ladder: a program file's rungs, laid out automatically.
+    if map
+        .files()
+        .any(|(_, f)| automat_dialect::is_slc_file(&f.name))
+    {
+        if let Some(s) = automat_dialect::slc_sheet(map, pou) {
+            let title = format!("{} (SLC-500 ladder)", s.pou);
+            return Ok(sheet::draw(&s).finish(&title));
+        }
+    }
     let mut interner = automat_base::Interner::new();
     for (id, f) in map.files() {
-        if automat_plcopen::is_plcopen_file(&f.name) {
+        if automat_plcopen::is_plcopen_file(&f.name) || automat_dialect::is_slc_file(&f.name) {
             continue;
         }
         let parsed = automat_syntax::parse(id, &f.text, &mut interner);

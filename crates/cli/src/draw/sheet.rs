@@ -517,3 +517,48 @@ pub fn draw(sheet: &Sheet) -> Pen {
 fn rail_unpinned(pins: &[Pin], auto: bool) -> bool {
     auto || pins.iter().all(|o| rel_or(o, false).is_none())
 }
+
+/// Where an element of a sheet is drawn (diagram coordinates) and where
+/// its pins are, for a live view that marks elements and shows pin values
+/// over the drawing.
+pub struct Boxed {
+    pub id: u32,
+    pub kind: NodeKind,
+    pub x: f64,
+    pub y: f64,
+    pub w: f64,
+    pub h: f64,
+    /// (formal name, point) of each input pin, then of each output pin.
+    pub ins: Vec<(String, (f64, f64))>,
+    pub outs: Vec<(String, (f64, f64))>,
+}
+
+/// The boxes of every element of `sheet`, placed as [`draw`] places them.
+pub fn boxes(sheet: &Sheet) -> Vec<Boxed> {
+    let auto = !positions_usable(sheet);
+    place(sheet)
+        .iter()
+        .map(|p| Boxed {
+            id: p.n.id,
+            kind: p.n.kind,
+            x: p.x,
+            y: p.y,
+            w: p.w,
+            h: p.h,
+            ins: (0..p.n.ins.len())
+                .map(|i| (p.n.ins[i].name.clone(), in_point(p, i, sheet.lang, auto)))
+                .collect(),
+            outs: p
+                .n
+                .outs
+                .iter()
+                .map(|o| {
+                    (
+                        o.name.clone(),
+                        out_point(p, Some(&o.name), sheet.lang, auto),
+                    )
+                })
+                .collect(),
+        })
+        .collect()
+}

@@ -214,3 +214,95 @@ fn what_cannot_be_drawn() {
     let e = diagram_of(&map, "p").err().unwrap_or_default();
     assert!(e.contains("POU `p` has an ST body"), "{e}");
 }
+
+/// What the HMI's live drawings hold (`GET /api/v1/drawings` before the
+/// server resolves the paths): the crane's LD with every contact's and
+/// coil's power flow, the PID loop's FBD with the pins of its block
+/// instance and the variables of its variable elements.
+#[test]
+fn live_drawings_of_the_ld_and_fbd_examples() {
+    let mut map = SourceMap::new();
+    for rel in [
+        "examples/crane-ld/crane.xml",
+        "examples/pid-temperature-fbd/pid.xml",
+    ] {
+        let text = std::fs::read_to_string(root().join(rel)).unwrap_or_default();
+        map.add(rel, &text);
+    }
+    let ds = super::live::drawings(&map);
+    let names: Vec<(&str, &str)> = ds.iter().map(|d| (d.pou.as_str(), d.lang)).collect();
+    assert_eq!(
+        names,
+        [
+            ("Crane", "LD"),
+            ("Avg4", "FBD"),
+            ("Measure", "FBD"),
+            ("Reg_temp", "FBD"),
+            ("Output", "FBD")
+        ]
+    );
+    let crane = &ds[0];
+    assert!(crane.svg.starts_with("<svg ") && crane.svg.contains("class=\"contact\""));
+    // Contact 23 (X7 drives M1S), placed where the drawing puts it.
+    let c23 = crane
+        .elements
+        .iter()
+        .find(|e| e.id == 23)
+        .expect("contact 23");
+    assert_eq!(
+        (c23.kind, c23.text.as_str(), c23.x, c23.y, c23.w, c23.h),
+        ("contact", "X7", 80.0, 300.0, 21.0, 20.0)
+    );
+    assert_eq!(c23.power.as_deref(), Some("__ld_n23"));
+    let powered = crane.elements.iter().filter(|e| e.power.is_some()).count();
+    let ld = crane
+        .elements
+        .iter()
+        .filter(|e| matches!(e.kind, "contact" | "coil"))
+        .count();
+    assert_eq!((powered, ld), (64, 64));
+    let measure = &ds[2];
+    let filter = measure
+        .elements
+        .iter()
+        .find(|e| e.id == 4)
+        .expect("block 4");
+    let pins: Vec<(&str, bool, &str, f64, f64)> = filter
+        .pins
+        .iter()
+        .map(|p| (p.name.as_str(), p.output, p.path.as_str(), p.x, p.y))
+        .collect();
+    assert_eq!(pins, [("XOUT", true, "Filter.XOUT", 377.0, 150.0)]);
+    let raw = measure
+        .elements
+        .iter()
+        .find(|e| e.id == 1)
+        .expect("variable 1");
+    assert_eq!(
+        (raw.kind, raw.value.as_deref()),
+        ("in-variable", Some("T_raw"))
+    );
+}
+
+/// An SLC-500 program file is drawn as rungs: the crane's 15 rungs, one
+/// rail each, its 24 XIC contacts, 4 OTE and 18 OTL/OTU coils, the OSRs and
+/// the TON as boxes, each operand with its symbol.
+#[test]
+fn slc_rungs_are_drawn_as_ladder() {
+    let d = draw("examples/crane-slc/crane.slc", "LAD2");
+    let s = svg::diagram(&d);
+    // A rail is two shapes (its bar and its pin).
+    assert_eq!(count(&s, "rail"), 30);
+    // Four strokes per contact and per coil.
+    assert_eq!(count(&s, "contact"), 24 * 4);
+    assert_eq!(count(&s, "coil"), 22 * 4);
+    assert_eq!(count(&s, "block"), 3);
+    assert!(s.contains("Pornire I:1/1"));
+    assert!(s.contains("T4:0/DN"));
+    assert!(s.contains("rung 6: R5: step 5 action"));
+    // By the file's name too.
+    assert_eq!(
+        svg::diagram(&draw("examples/crane-slc/crane.slc", "main")),
+        s
+    );
+}

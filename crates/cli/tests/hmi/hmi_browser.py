@@ -2,13 +2,15 @@
 
 Run by crates/cli/tests/hmi.rs against two PLCs it starts:
 
-    hmi_browser.py CRANE_URL CRANE_TOKEN LOAD_URL LOAD_TOKEN SHOTS_DIR
+    hmi_browser.py CRANE_URL CRANE_TOKEN LOAD_URL LOAD_TOKEN SHOTS_DIR LD_URL LD_TOKEN
 
 CRANE is `automat run examples/crane --virtual-clock` with the users ada
 (viewer, viewer-pass) and otto (operator, operator-pass): every value is
 exact, scans run on `step`. LOAD runs a program of 200 counters in real
 time, for the update-rate figure. Screenshots of every view go to
-SHOTS_DIR. Prints one line per check and `N passed, M failed` last.
+SHOTS_DIR. LD runs `examples/crane-ld --virtual-clock` (the crane in IEC
+Ladder Diagram) for the live LD drawing. Prints one line per check and
+`N passed, M failed` last.
 """
 
 import json
@@ -361,12 +363,66 @@ def load(d, base, token, shots):
     shot(d, os.path.join(shots, "fault.png"))
 
 
+def ladder(d, base, token, shots):
+    """The LD drawing live: `GET /api/v1/drawings`, the hidden power-flow
+    BOOLs read (never written) through the API, and a contact's frame in
+    the page following its variable."""
+    api = Api(base, token)
+    check("the drawings need a token", requests.get(base + "/api/v1/drawings", timeout=10).status_code == 401)
+    ds = requests.get(base + "/api/v1/drawings", headers=api.h, timeout=30).json()["drawings"]
+    check("one drawing: the crane's LD, run by Ctrl",
+          [(x["pou"], x["lang"], x["instances"]) for x in ds] == [("Crane", "LD", ["Ctrl"])], ds and ds[0]["pou"])
+    crane = ds[0]
+    c23 = next((e for e in crane["elements"] if e["id"] == 23), None)
+    check("contact 23 (X7) shows its power flow, relative to the instance",
+          c23 and (c23["kind"], c23["text"], c23["power"], c23["x"], c23["y"]) == ("contact", "X7", ".__ld_n23", 80, 300),
+          c23)
+    check("the drawing is automat draw's SVG", crane["svg"].startswith("<svg ") and 'class="coil"' in crane["svg"])
+
+    # The hidden power flow is read like any variable and refused for writes.
+    api.step(1)
+    check("Ctrl.__ld_n23 reads FALSE (X7 is not set)", api.read("Ctrl.__ld_n23") == {"Ctrl.__ld_n23": "FALSE"},
+          api.read("Ctrl.__ld_n23"))
+    r = requests.post(base + "/api/v1/write", headers=api.h, json={"path": "Ctrl.__ld_n23", "value": "TRUE"},
+                      timeout=30)
+    check("and cannot be written (409, compiler-generated)",
+          r.status_code == 409 and "compiler-generated" in r.text, (r.status_code, r.text))
+    r = requests.post(base + "/api/v1/force", headers=api.h, json={"path": "Ctrl.__ld_n23", "value": "TRUE"},
+                      timeout=30)
+    check("nor forced", r.status_code == 409, (r.status_code, r.text))
+
+    # The page: contact 23's frame follows X7 through the WebSocket.
+    d.get(base + "/?token=" + token + "#drawings")
+    frame = lambda: d.execute_script(
+        "const r = document.querySelector('#drawing-area .live rect.power[data-id=\"23\"]');"
+        "return r ? r.getAttribute('class') : null;")
+    v = wait(d, "frame", lambda: frame() == "power off")
+    check("the page draws the LD with contact 23 unpowered", v, frame())
+    r = requests.post(base + "/api/v1/write", headers=api.h, json={"path": "Ctrl.X7", "value": "TRUE"}, timeout=30)
+    check("X7 written", r.status_code == 200, r.text)
+    api.step(1)
+    v = wait(d, "powered", lambda: frame() == "power on")
+    check("after one scan contact 23 is powered (green)", v, frame())
+    check("and coil 24 (M1S) too", d.execute_script(
+        "return document.querySelector('#drawing-area .live rect.power[data-id=\"24\"]').getAttribute('class')")
+        == "power on")
+    time.sleep(0.3)
+    shot(d, os.path.join(shots, "drawings.png"))
+    r = requests.post(base + "/api/v1/write", headers=api.h, json={"path": "Ctrl.X7", "value": "FALSE"}, timeout=30)
+    api.step(1)
+    v = wait(d, "unpowered", lambda: frame() == "power off")
+    check("X7 FALSE again: contact 23 unpowered", v, frame())
+    errors = console_errors(d)
+    check("no script errors on the LD page", not errors, errors)
+
+
 def main():
-    crane_url, crane_token, load_url, load_token, shots = sys.argv[1:6]
+    crane_url, crane_token, load_url, load_token, shots, ld_url, ld_token = sys.argv[1:8]
     d = browser()
     try:
         crane(d, crane_url, crane_token, shots)
         load(d, load_url, load_token, shots)
+        ladder(d, ld_url, ld_token, shots)
     finally:
         d.quit()
     print(f"{passed} passed, {failed} failed")

@@ -410,6 +410,43 @@ def fst(base, token):
     expect("fst: a program's run state is not written from outside: 409", r, 409)
 
 
+def fbd(base, token):
+    """GET /api/v1/drawings on the PID loop in FBD: every FBD POU with the
+    instances that run it and its paths resolved against the program (a
+    function block instance's pins, variable elements), watched over the
+    WebSocket. (The LD power flows, hidden names, are checked on the crane
+    in LD by tests/hmi/hmi_browser.py.)"""
+    eng, anon = Api(base, token), Api(base, None)
+    expect("drawings without a token: 401", anon.get("/api/v1/drawings"), 401)
+    r = eng.get("/api/v1/drawings")
+    check("drawings: 200", r.status_code == 200, f"{r.status_code} {r.text[:200]}")
+    ds = r.json()["drawings"] if r.status_code == 200 else []
+    check("drawings: the four FBD POUs and who runs them",
+          [(d["pou"], d["lang"], d["instances"]) for d in ds]
+          == [("Avg4", "FBD", ["Measure.Filter"]), ("Measure", "FBD", ["Measure"]),
+              ("Reg_temp", "FBD", ["Reg_temp"]), ("Output", "FBD", ["Output"])],
+          [(d["pou"], d["instances"]) for d in ds])
+    by = {d["pou"]: {e["id"]: e for e in d["elements"]} for d in ds}
+    m = by.get("Measure", {})
+    check("drawings: Measure's block 4 shows the pin Filter.XOUT, relative to the instance",
+          [(p["name"], p["output"], p["path"]) for p in m.get(4, {}).get("pins", [])]
+          == [("XOUT", True, ".Filter.XOUT")], m.get(4))
+    check("drawings: a variable element shows its variable", m.get(1, {}).get("value") == ".T_raw", m.get(1))
+    reg = by.get("Reg_temp", {})
+    check("drawings: the TON instance's four pins",
+          [p["path"] for p in reg.get(3, {}).get("pins", [])]
+          == [".timer_pi.IN", ".timer_pi.PT", ".timer_pi.Q", ".timer_pi.ET"], reg.get(3))
+    eng.step(5)
+    v = eng.read("Measure.Filter.XOUT", "Measure.T_pv")
+    check("drawings: the paths read", set(v) == {"Measure.Filter.XOUT", "Measure.T_pv"}, v)
+    # A value of the drawing over the WebSocket, as the HMI subscribes it.
+    with connect(base.replace("http", "ws") + "/api/v1/watch", additional_headers=eng.h) as ws:
+        ws.send(json.dumps({"subscribe": ["Measure.Filter.XOUT", "Reg_temp.timer_pi.Q"]}))
+        first = json.loads(ws.recv(timeout=10))
+        check("watch: the drawing's paths are watched",
+              set(first.get("values", {})) == {"Measure.Filter.XOUT", "Reg_temp.timer_pi.Q"}, first)
+
+
 def main():
     mode, base, token = sys.argv[1:4]
     if mode == "exact":
@@ -418,6 +455,8 @@ def main():
         plant(base, token)
     elif mode == "fst":
         fst(base, token)
+    elif mode == "fbd":
+        fbd(base, token)
     elif mode == "tls":
         tls(base, token, sys.argv[4])
     else:

@@ -31,6 +31,8 @@ pub struct Emitter<'a> {
     loops: u32,
     /// A remainder slot per timer element: (file, word index) → slot.
     rems: BTreeMap<(u32, u32), usize>,
+    /// A slot per PID block for its integral and last PV.
+    pids: BTreeMap<(u32, u32), usize>,
 }
 
 /// Where the rungs of one inlined file run.
@@ -102,6 +104,7 @@ impl<'a> Emitter<'a> {
             stack: Vec::new(),
             loops: 0,
             rems: BTreeMap::new(),
+            pids: BTreeMap::new(),
         }
     }
 
@@ -151,9 +154,10 @@ impl<'a> Emitter<'a> {
         s.push_str("    __slc_started : BOOL;\n    __slc_last : LINT;\n    __slc_fault : __SLC_MAJOR_FAULT;\nEND_VAR\nVAR\n");
         let _ = writeln!(
             s,
-            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;",
+            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d, __i : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;\n    __pidi, __pidp : ARRAY[0..{}] OF LREAL;",
             MAX_BRANCH * (MAX_CALLS + 1) - 1,
-            self.rems.len().max(1) - 1
+            self.rems.len().max(1) - 1,
+            self.pids.len().max(1) - 1
         );
         for k in 0..self.loops {
             let _ = writeln!(s, "    __pc{k} : INT;\n    __j{k} : BOOL;");
@@ -216,12 +220,13 @@ impl<'a> Emitter<'a> {
         // Segments start at rungs beginning with LBL.
         let mut seg = 0usize;
         for (r, rung) in rungs.iter().enumerate() {
+            let rn = rung.number;
             for (k, e) in rung.elems.iter().enumerate() {
                 let Elem::Ins(i) = e else { continue };
                 match i.mn {
                     "LBL" => {
                         if k != 0 {
-                            self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `{}`: LBL is the first instruction of its rung", i.text));
+                            self.err(Code::E237, i.span, format!("LAD {n} rung {rn}, `{}`: LBL is the first instruction of its rung", i.text));
                             continue;
                         }
                         if r > 0 {
@@ -229,12 +234,12 @@ impl<'a> Emitter<'a> {
                         }
                         if let Some(Operand::Number(l)) = i.ops.first() {
                             if level.labels.insert(*l, seg).is_some() {
-                                self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `{}`: label {l} is defined twice in this file", i.text));
+                                self.err(Code::E237, i.span, format!("LAD {n} rung {rn}, `{}`: label {l} is defined twice in this file", i.text));
                             }
                         }
                     }
                     "SBR" if n == 2 || r != 0 || k != 0 => {
-                        self.err(Code::E237, i.span, format!("LAD {n} rung {r}, `SBR`: SBR is the first instruction of a subroutine file (3 to 255)"));
+                        self.err(Code::E237, i.span, format!("LAD {n} rung {rn}, `SBR`: SBR is the first instruction of a subroutine file (3 to 255)"));
                     }
                     _ => {}
                 }
@@ -253,7 +258,7 @@ impl<'a> Emitter<'a> {
         let mut seg = 0usize;
         for (r, rung) in rungs.iter().enumerate() {
             let starts = matches!(rung.elems.first(), Some(Elem::Ins(i)) if i.mn == "LBL");
-            let code = self.rung(n, r, rung, &level);
+            let code = self.rung(n, rung.number, rung, &level);
             match u {
                 Some(u) if starts && r > 0 => {
                     seg += 1;
@@ -559,6 +564,21 @@ impl<'a> Emitter<'a> {
                 }
                 s
             }
+            "COP" | "FLL" | "FFL" | "FFU" | "BSL" | "BSR" => self.file_ins(n, r, i),
+            "SQO" | "SQC" => self.sequencer(n, r, i),
+            "PID" => {
+                if !self.ints(n, r, i, ops) {
+                    return String::new();
+                }
+                let (arr, b) = (a0.array(), a0.index());
+                let w = |k: u32| format!("{arr}[{}]", b + k);
+                let k = self.pid_slot(a0);
+                format!(
+                    "    __x := __SLC_PID(RUNG := __rc, D := __d, PV := {}, SP := {}, KC := {}, TI := {}, TD := {}, BIAS := {}, OMAX := {}, OMIN := {}, UPD := {}, CTL := {}, W14 := {}, W15 := {}, W16 := {}, W17 := {}, W18 := {}, CV := {}, REM := __rem[{k}], I := __pidi[{}], PREV := __pidp[{}]);\n",
+                    int(&op(1)), w(2), w(3), w(4), w(5), w(6), w(11), w(12), w(13), w(0), w(14), w(15), w(16), w(17), w(18),
+                    place(addr(&op(2))), self.pids_index(a0), self.pids_index(a0)
+                )
+            }
             "SBR" | "LBL" | "NOP" => String::new(),
             "AFI" => "    __rc := FALSE;\n".into(),
             "MCR" => "    __mcr := __rc;\n".into(),
@@ -596,6 +616,156 @@ impl<'a> Emitter<'a> {
         }
     }
 
+    /// The file instructions: COP, FLL, the FIFO pair FFL/FFU and the bit
+    /// shifts BSL/BSR over a run of words (`#N7:10`).
+    fn file_ins(&mut self, n: u32, r: usize, i: &Ins) -> String {
+        let ops = &i.ops;
+        let op = |k: usize| ops.get(k).cloned().unwrap_or(Operand::Int(0));
+        let len = |k: usize| match ops.get(k) {
+            Some(Operand::Int(v)) => *v,
+            _ => 1,
+        };
+        let at = |o: &Operand| {
+            let a = addr(o);
+            (a.array(), a.index())
+        };
+        match i.mn {
+            "COP" => {
+                if is_real(&op(0)) != is_real(&op(1)) {
+                    self.err(Code::E232, i.span, format!("LAD {n} rung {r}, `{}`: COP copies between files of one kind (integer words or floats)", i.text));
+                    return String::new();
+                }
+                let ((sa, si), (da, di)) = (at(&op(0)), at(&op(1)));
+                format!(
+                    "    IF __rc THEN FOR __i := 0 TO {} DO {da}[{di} + __i] := {sa}[{si} + __i]; END_FOR; END_IF;\n",
+                    len(2) - 1
+                )
+            }
+            "FLL" => {
+                let dest = addr(&op(1));
+                let v = if dest.ty == FileType::F {
+                    match op(0) {
+                        Operand::Addr(a) if a.ty == FileType::F => place(a),
+                        o => format!("LREAL_TO_REAL({})", lreal(&o)),
+                    }
+                } else if is_real(&op(0)) {
+                    self.err(Code::E232, i.span, format!("LAD {n} rung {r}, `{}`: FLL fills integer words from an integer source", i.text));
+                    return String::new();
+                } else {
+                    int(&op(0))
+                };
+                let (da, di) = at(&op(1));
+                format!(
+                    "    IF __rc THEN FOR __i := 0 TO {} DO {da}[{di} + __i] := {v}; END_FOR; END_IF;\n",
+                    len(2) - 1
+                )
+            }
+            "FFL" | "FFU" => {
+                if !self.ints(n, r, i, ops) {
+                    return String::new();
+                }
+                let ctl = addr(&op(2));
+                let l = len(3);
+                if let Operand::Int(pos) = op(4) {
+                    self.layout.preset(ctl, 1, l);
+                    self.layout.preset(ctl, 2, pos);
+                }
+                let (ca, ci) = (ctl.array(), ctl.index());
+                let (c, ln, pos) = (
+                    format!("{ca}[{ci}]"),
+                    format!("{ca}[{}]", ci + 1),
+                    format!("{ca}[{}]", ci + 2),
+                );
+                let mut s = String::new();
+                if i.mn == "FFL" {
+                    let (fa, fi) = at(&op(1));
+                    let _ = writeln!(s, "    IF __rc AND NOT {c}.15 THEN IF {pos} >= 0 AND {pos} < {ln} AND {pos} < {l} THEN {fa}[{fi} + {pos}] := {}; {pos} := {pos} + 1; END_IF; END_IF;", int(&op(0)));
+                    let _ = writeln!(s, "    {c}.15 := __rc;");
+                } else {
+                    let (fa, fi) = at(&op(0));
+                    let dest = place(addr(&op(1)));
+                    let _ = writeln!(s, "    IF __rc AND NOT {c}.14 THEN IF {pos} > 0 AND {pos} <= {l} THEN {dest} := {fa}[{fi}]; FOR __i := 0 TO INT_TO_DINT({pos}) - 2 DO {fa}[{fi} + __i] := {fa}[{fi} + __i + 1]; END_FOR; {fa}[{fi} + {pos} - 1] := 0; {pos} := {pos} - 1; END_IF; END_IF;");
+                    let _ = writeln!(s, "    {c}.14 := __rc;");
+                }
+                let _ = writeln!(s, "    {c}.13 := {pos} >= {ln}; {c}.12 := {pos} = 0;");
+                s
+            }
+            _ => {
+                // BSL / BSR
+                let ctl = addr(&op(1));
+                let l = len(3);
+                self.layout.preset(ctl, 1, l);
+                let (ca, ci) = (ctl.array(), ctl.index());
+                let c = format!("{ca}[{ci}]");
+                let (aa, ai) = at(&op(0));
+                let bit = |k: &str| format!("__SLC_GETBIT({aa}[{ai} + ({k}) / 16], ({k}) MOD 16)");
+                let set = |k: &str, v: &str| {
+                    format!("{aa}[{ai} + ({k}) / 16] := __SLC_SETBIT({aa}[{ai} + ({k}) / 16], ({k}) MOD 16, {v});")
+                };
+                let src = place(addr(&op(2)));
+                let last = (l - 1).to_string();
+                let body = if i.mn == "BSL" {
+                    format!(
+                        "{c}.10 := {}; FOR __i := {last} TO 1 BY -1 DO {} END_FOR; {}",
+                        bit(&last),
+                        set("__i", &bit("__i - 1")),
+                        set("0", &src)
+                    )
+                } else {
+                    format!(
+                        "{c}.10 := {}; FOR __i := 0 TO {} DO {} END_FOR; {}",
+                        bit("0"),
+                        l - 2,
+                        set("__i", &bit("__i + 1")),
+                        set(&last, &src)
+                    )
+                };
+                format!("    IF __rc AND NOT {c}.15 THEN {body} {c}.13 := TRUE; END_IF;\n    IF NOT __rc THEN {c}.13 := FALSE; END_IF;\n    {c}.15 := __rc;\n")
+            }
+        }
+    }
+
+    /// SQO and SQC step through a file of LEN + 1 words (step 0 the
+    /// start) on each false -> true change of the rung, wrapping from LEN to
+    /// 1: SQO moves the step's word through the mask into the destination,
+    /// SQC compares the source with it through the mask (FD, bit 8).
+    fn sequencer(&mut self, n: u32, r: usize, i: &Ins) -> String {
+        if !self.ints(n, r, i, &i.ops) {
+            return String::new();
+        }
+        let op = |k: usize| i.ops.get(k).cloned().unwrap_or(Operand::Int(0));
+        let ctl = addr(&op(3));
+        let l = match op(4) {
+            Operand::Int(v) => v,
+            _ => 1,
+        };
+        self.layout.preset(ctl, 1, l);
+        if let Operand::Int(p) = op(5) {
+            self.layout.preset(ctl, 2, p);
+        }
+        let (ca, ci) = (ctl.array(), ctl.index());
+        let (c, ln, pos) = (
+            format!("{ca}[{ci}]"),
+            format!("{ca}[{}]", ci + 1),
+            format!("{ca}[{}]", ci + 2),
+        );
+        let f = addr(&op(0));
+        let word = format!("{}[{} + {pos}]", f.array(), f.index());
+        let act = if i.mn == "SQO" {
+            let d = place(addr(&op(2)));
+            format!("{d} := __SLC_MVM({word}, {}, {d});", int(&op(1)))
+        } else {
+            format!(
+                "{c}.8 := __SLC_MEQ({}, {}, {word});",
+                int(&op(2)),
+                int(&op(1))
+            )
+        };
+        format!(
+            "    IF __rc AND NOT {c}.15 THEN IF {pos} >= {ln} OR {pos} < 0 THEN {pos} := 1; ELSE {pos} := {pos} + 1; END_IF; IF {pos} <= {l} THEN {act} END_IF; END_IF;\n    {c}.15 := __rc;\n    {c}.13 := {pos} >= {ln};\n"
+        )
+    }
+
     /// Bitwise instructions take integer words only.
     fn ints(&mut self, n: u32, r: usize, i: &Ins, ops: &[Operand]) -> bool {
         if ops.iter().any(is_real) {
@@ -610,6 +780,17 @@ impl<'a> Emitter<'a> {
             return false;
         }
         true
+    }
+
+    /// The remainder slot of a PID block (shared with the timers' slots).
+    fn pid_slot(&mut self, a: Address) -> usize {
+        self.rem(a)
+    }
+
+    /// The integral and last-PV slot of a PID block.
+    fn pids_index(&mut self, a: Address) -> usize {
+        let next = self.pids.len();
+        *self.pids.entry((a.file, a.index())).or_insert(next)
     }
 
     fn rem(&mut self, a: Address) -> usize {

@@ -25,6 +25,15 @@ pub enum Kind {
     File,
     /// A label number.
     Label,
+    /// The start of a run of words (`#N7:10`).
+    FileRef,
+    /// A control element (`R6:0`).
+    Control,
+    /// A PID control block: an element of an N file with 23 words.
+    Block,
+    /// A length: 1 to 128 words (COP, FLL, FFL, FFU) or 1 to 2048 bits
+    /// (BSL, BSR), checked by the instruction.
+    Length,
 }
 
 pub struct Def {
@@ -82,18 +91,34 @@ pub const TABLE: &[Def] = &[
     d("LBL", &[Label], false),
     d("MCR", &[], true),
     d("TND", &[], true),
+    d("COP", &[FileRef, FileRef, Length], true),
+    d("FLL", &[Source, FileRef, Length], true),
+    d("FFL", &[Source, FileRef, Control, Length, Preset], true),
+    d("FFU", &[FileRef, Dest, Control, Length, Preset], true),
+    d("BSL", &[FileRef, Control, Bit, Length], true),
+    d("BSR", &[FileRef, Control, Bit, Length], true),
+    d(
+        "SQO",
+        &[FileRef, Source, Dest, Control, Length, Preset],
+        true,
+    ),
+    d(
+        "SQC",
+        &[FileRef, Source, Source, Control, Length, Preset],
+        true,
+    ),
+    d("PID", &[Block, Source, Dest], true),
     d("AFI", &[], false),
     d("NOP", &[], false),
 ];
 
 /// SLC-500 instructions that exist but automat does not run yet.
 const UNIMPLEMENTED: &[&str] = &[
-    "COP", "FLL", "FFL", "FFU", "LFL", "LFU", "BSL", "BSR", "SQO", "SQC", "SQL", "PID", "CPT",
-    "TOD", "FRD", "DCD", "ENC", "SWP", "ONS", "OSF", "HSC", "IIM", "IOM", "REF", "SUS", "INT",
-    "STD", "STE", "STS", "UID", "UIE", "DDV", "SVC", "MSG", "ABL", "ACB", "ACI", "ACN", "AEX",
-    "AHL", "ARD", "ARL", "AWA", "AWT", "ASC", "ASR", "DEG", "RAD", "SIN", "COS", "TAN", "ASN",
-    "ACS", "ATN", "LN", "LOG", "XPY", "SRT", "STD", "FBC", "DDT", "BTR", "BTW", "RPC", "RHC",
-    "TDF", "PTO", "PWM", "RTA", "HSL", "RAC", "REAL",
+    "LFL", "LFU", "SQL", "CPT", "TOD", "FRD", "DCD", "ENC", "SWP", "ONS", "OSF", "HSC", "IIM",
+    "IOM", "REF", "SUS", "INT", "STD", "STE", "STS", "UID", "UIE", "DDV", "SVC", "MSG", "ABL",
+    "ACB", "ACI", "ACN", "AEX", "AHL", "ARD", "ARL", "AWA", "AWT", "ASC", "ASR", "DEG", "RAD",
+    "SIN", "COS", "TAN", "ASN", "ACS", "ATN", "LN", "LOG", "XPY", "SRT", "STD", "FBC", "DDT",
+    "BTR", "BTW", "RPC", "RHC", "TDF", "PTO", "PWM", "RTA", "HSL", "RAC", "REAL",
 ];
 
 pub fn find(up: &str) -> Option<&'static Def> {
@@ -122,6 +147,10 @@ pub fn describe(kinds: &[Kind]) -> String {
             Preset => "constant",
             File => "file",
             Label => "label",
+            FileRef => "#file",
+            Control => "control",
+            Length => "length",
+            Block => "control block",
         })
         .collect::<Vec<_>>()
         .join(", ")

@@ -24,6 +24,7 @@ mod emit;
 mod instr;
 mod layout;
 mod parse;
+mod sheet;
 
 use automat_base::{Code, Diagnostic, SourceMap, Span};
 
@@ -70,6 +71,29 @@ pub fn translate(map: &SourceMap) -> (Option<String>, Vec<Diagnostic>) {
         return (None, diags);
     }
     (Some(text), diags)
+}
+
+/// The drawing sheet of the program file `pou` names (`LAD2`, `LAD 2`,
+/// `2`, or the name its `LAD` line gives) in the `.slc` files of `map`.
+pub fn sheet(map: &SourceMap, pou: &str) -> Option<automat_plcopen::sheet::Sheet> {
+    let mut project = parse::Project::default();
+    let slc: Vec<_> = map.files().filter(|(_, f)| is_slc_file(&f.name)).collect();
+    for (id, f) in &slc {
+        parse::Reader::new(&mut project, *id).tables(&f.text);
+    }
+    for (id, f) in &slc {
+        parse::Reader::new(&mut project, *id).rungs(&f.text);
+    }
+    let want = pou.trim().to_ascii_uppercase();
+    let digits = want.trim_start_matches("LAD").trim();
+    let n = digits.parse::<u32>().ok().or_else(|| {
+        project
+            .files
+            .values()
+            .find(|f| !f.name.is_empty() && f.name.eq_ignore_ascii_case(pou.trim()))
+            .map(|f| f.number)
+    })?;
+    sheet::sheet(&project, n)
 }
 
 /// The data files and rungs as Structured Text (its diagnostics go to the

@@ -51,6 +51,8 @@ pub struct Rung {
     pub elems: Vec<Elem>,
     pub span: Span,
     pub comment: Option<String>,
+    /// Its number in its program file (from 0).
+    pub number: usize,
 }
 
 #[derive(Clone, Debug)]
@@ -59,6 +61,8 @@ pub struct LadFile {
     pub name: String,
     pub span: Span,
     pub rungs: Vec<Rung>,
+    /// Rungs read, those dropped for an error included.
+    pub seen: usize,
 }
 
 #[derive(Clone, Debug)]
@@ -282,6 +286,7 @@ impl<'a> Reader<'a> {
                             name,
                             span,
                             rungs: Vec::new(),
+                            seen: 0,
                         });
                     }
                 }
@@ -313,7 +318,18 @@ impl<'a> Reader<'a> {
                 return;
             }
         };
+        // `N7`, `B3`: the data files' own arrays.
+        let file_like = name.up.len() > 1
+            && name
+                .up
+                .chars()
+                .next()
+                .and_then(FileType::from_letter)
+                .is_some()
+            && name.up[1..].bytes().all(|b| b.is_ascii_digit());
         if !is_name(&name.text)
+            || file_like
+            || name.up == "SLC"
             || slc::looks_like(&name.text)
             || instr::find(&name.up).is_some()
             || name.up.starts_with("__")
@@ -469,6 +485,22 @@ impl<'a> Reader<'a> {
     /// error (reported once).
     fn rung(&mut self, toks: &[Tok], span: Span) {
         let comment = self.comment.take();
+        // The program file exists once it has a rung, even one with an
+        // error; rungs are numbered from 0 in each file, those dropped for
+        // an error included.
+        let (lad, file) = (self.lad, self.file);
+        let number = {
+            let f = self.p.files.entry(lad).or_insert_with(|| LadFile {
+                number: lad,
+                name: String::new(),
+                span: Span::new(file, 0, 0),
+                rungs: Vec::new(),
+                seen: 0,
+            });
+            f.seen += 1;
+            f.seen - 1
+        };
+        let at = format!("LAD {lad} rung {number}");
         let mut elems = Vec::new();
         let mut depth = 0u32;
         let mut i = 0;
@@ -487,7 +519,7 @@ impl<'a> Reader<'a> {
                     self.err(
                         Code::E235,
                         s,
-                        format!("`{}` outside a branch: no `BST` opened it", t.up),
+                        format!("{at}: `{}` outside a branch: no `BST` opened it", t.up),
                     );
                     ok = false;
                     break;
@@ -510,14 +542,14 @@ impl<'a> Reader<'a> {
                     (
                         Code::E231,
                         format!(
-                            "`{}`: this SLC-500 instruction is not implemented by automat",
+                            "{at}: `{}`: this SLC-500 instruction is not implemented by automat",
                             t.text
                         ),
                     )
                 } else {
                     (
                         Code::E230,
-                        format!("`{}` is not an SLC-500 instruction", t.text),
+                        format!("{at}: `{}` is not an SLC-500 instruction", t.text),
                     )
                 };
                 self.err(why.0, s, why.1);
@@ -542,7 +574,7 @@ impl<'a> Reader<'a> {
                     Code::E233,
                     ispan,
                     format!(
-                        "`{text}`: {} takes {} operand(s): {}",
+                        "{at}, `{text}`: {} takes {} operand(s): {}",
                         def.name,
                         kinds.len(),
                         instr::describe(kinds)
@@ -557,7 +589,7 @@ impl<'a> Reader<'a> {
                     Ok(v) => ops.push(v),
                     Err((code, why)) => {
                         let os = self.span(o);
-                        self.err(code, os, format!("`{text}`: {why}"));
+                        self.err(code, os, format!("{at}, `{text}`: {why}"));
                         ok = false;
                         break;
                     }
@@ -571,6 +603,42 @@ impl<'a> Reader<'a> {
                     self.p.used.push((*a, self.span(ot)));
                 }
             }
+            // A run of words: its last element is used too.
+            for (start, words) in runs(def.name, &ops) {
+                if !matches!(def.name, "BSL" | "BSR")
+                    && words > 128 + u32::from(matches!(def.name, "SQO" | "SQC"))
+                {
+                    self.err(
+                        Code::E232,
+                        ispan,
+                        format!(
+                            "{at}, `{text}`: the length is 1 to 128 words (BSL, BSR: 2048 bits)"
+                        ),
+                    );
+                    ok = false;
+                    break;
+                }
+                let last = Address {
+                    elem: start.elem + words - 1,
+                    ..start
+                };
+                if last.elem > slc::MAX_ELEMENT {
+                    self.err(
+                        Code::E234,
+                        ispan,
+                        format!(
+                            "{at}, `{text}`: the run of {words} words from element {} passes element 255",
+                            start.elem
+                        ),
+                    );
+                    ok = false;
+                    break;
+                }
+                self.p.used.push((last, ispan));
+            }
+            if !ok {
+                break;
+            }
             elems.push(Elem::Ins(Ins {
                 mn: def.name,
                 ops,
@@ -583,7 +651,7 @@ impl<'a> Reader<'a> {
             self.err(
                 Code::E235,
                 span,
-                "a branch is not closed: `BST` without its `BND`".into(),
+                format!("{at}: a branch is not closed: `BST` without its `BND`"),
             );
             ok = false;
         }
@@ -593,19 +661,14 @@ impl<'a> Reader<'a> {
         if elems.is_empty() {
             return;
         }
-        let lad = self.lad;
-        let file = self.file;
-        let f = self.p.files.entry(lad).or_insert_with(|| LadFile {
-            number: lad,
-            name: String::new(),
-            span: Span::new(file, 0, 0),
-            rungs: Vec::new(),
-        });
-        f.rungs.push(Rung {
-            elems,
-            span,
-            comment,
-        });
+        if let Some(f) = self.p.files.get_mut(&lad) {
+            f.rungs.push(Rung {
+                elems,
+                span,
+                comment,
+                number,
+            });
+        }
     }
 
     fn address(&self, t: &Tok) -> Result<Address, String> {
@@ -652,6 +715,27 @@ impl<'a> Reader<'a> {
                     _ => Err(wrong("no label number (0 to 999, `Q2:5` or `5`)")),
                 }
             }
+            Kind::Length => match constant(&t.up) {
+                Some(Operand::Int(v)) if (1..=2048).contains(&v) => Ok(Operand::Int(v)),
+                _ => Err(wrong("no length (a constant 1 to 128 words, 2048 bits)")),
+            },
+            Kind::FileRef => {
+                let Some(rest) = t.text.strip_prefix('#') else {
+                    return Err(wrong(
+                        "no file operand: a run of words starts with `#` (`#N7:10`)",
+                    ));
+                };
+                let a = slc::parse(rest).map_err(|why| (Code::E236, why))?;
+                if a.part != Part::Element
+                    || a.ty.words() != 1
+                    || matches!(a.ty, FileType::I | FileType::O)
+                {
+                    return Err(wrong(
+                        "no file operand: `#` starts a run of B, N, S or F elements (`#N7:10`)",
+                    ));
+                }
+                Ok(Operand::Addr(a))
+            }
             Kind::Source if constant(&t.up).is_some() => match constant(&t.up) {
                 Some(Operand::Int(v)) if !(-32768..=32767).contains(&v) => {
                     Err(wrong("an integer constant outside -32768 to 32767"))
@@ -666,6 +750,8 @@ impl<'a> Reader<'a> {
                     Kind::Timer => a.ty == FileType::T && a.part == Part::Element,
                     Kind::Counter => a.ty == FileType::C && a.part == Part::Element,
                     Kind::Structure => a.is_structure(),
+                    Kind::Control => a.ty == FileType::R && a.part == Part::Element,
+                    Kind::Block => a.ty == FileType::N && a.part == Part::Element,
                     Kind::Source | Kind::Dest => !a.is_bit() && !a.is_structure(),
                     _ => false,
                 };
@@ -681,6 +767,10 @@ impl<'a> Reader<'a> {
                         Kind::Structure => {
                             "no timer, counter or control element (`T4:0`, `C5:0`, `R6:0`)"
                         }
+                        Kind::Block => {
+                            "no PID control block: an element of an N file (`N10:0`, 23 words)"
+                        }
+                        Kind::Control => "no control element: an element of an R file (`R6:0`)",
                         Kind::Dest => "no word address to write (`N7:0`, `T4:0.PRE`, `F8:1`)",
                         _ => "no word address or constant (`N7:0`, `T4:0.ACC`, `F8:1`, `25`)",
                     }))
@@ -688,6 +778,49 @@ impl<'a> Reader<'a> {
             }
         }
     }
+}
+
+/// The runs of words a file instruction works on: each one's first
+/// element and number of words.
+pub fn runs(mn: &str, ops: &[Operand]) -> Vec<(Address, u32)> {
+    let (files, len): (&[usize], _) = match mn {
+        "COP" => (&[0, 1], ops.get(2)),
+        "FLL" => (&[1], ops.get(2)),
+        "FFL" => (&[1], ops.get(3)),
+        "FFU" | "BSL" | "BSR" => (&[0], ops.get(3)),
+        "PID" => {
+            return match ops.first() {
+                Some(Operand::Addr(a)) => vec![(*a, 23)],
+                _ => Vec::new(),
+            }
+        }
+        // Steps 0..=LEN: LEN + 1 words.
+        "SQO" | "SQC" => {
+            return match (ops.first(), ops.get(4)) {
+                (Some(Operand::Addr(a)), Some(Operand::Int(n))) => {
+                    vec![(*a, u32::try_from(*n).unwrap_or(0) + 1)]
+                }
+                _ => Vec::new(),
+            }
+        }
+        _ => return Vec::new(),
+    };
+    let Some(Operand::Int(n)) = len else {
+        return Vec::new();
+    };
+    let n = u32::try_from(*n).unwrap_or(1).max(1);
+    let words = if mn == "BSL" || mn == "BSR" {
+        n.div_ceil(16)
+    } else {
+        n
+    };
+    files
+        .iter()
+        .filter_map(|&k| match ops.get(k) {
+            Some(Operand::Addr(a)) => Some((*a, words)),
+            _ => None,
+        })
+        .collect()
 }
 
 /// A numeric constant: an integer or a real (`1.5`, `-2.0E3`).

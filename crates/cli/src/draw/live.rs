@@ -1,0 +1,115 @@
+//! The LD and FBD drawings the HMI shows live (`GET /api/v1/drawings`):
+//! each graphical POU of the PLCopen files drawn as `automat draw` draws
+//! it, with the box of every element and, per element, the variables whose
+//! values go on it, relative to an instance of the POU (the server
+//! resolves them against the running program).
+
+use super::sheet::{boxes, draw};
+use crate::plot::svg;
+use automat_online::drawings::{Drawing, Element, Pin};
+use automat_plcopen::sheet::{Found, NodeKind, SheetLang};
+
+fn kind_name(k: NodeKind) -> &'static str {
+    use NodeKind::*;
+    match k {
+        LeftRail => "left-rail",
+        RightRail => "right-rail",
+        Contact => "contact",
+        Coil => "coil",
+        Block => "block",
+        InVar => "in-variable",
+        OutVar => "out-variable",
+        InOutVar => "in-out-variable",
+        Label => "label",
+        Jump => "jump",
+        Return => "return",
+        Connector => "connector",
+        Continuation => "continuation",
+        Comment => "comment",
+        _ => "other",
+    }
+}
+
+/// A variable path (`x`, `Ctrl.x`, `a[3].b`), not an expression: only
+/// those are watched.
+fn is_path(t: &str) -> bool {
+    t.chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && t.chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '.' | '[' | ']'))
+}
+
+/// The drawings of every LD and FBD POU in the PLCopen files of `map`.
+pub fn drawings(map: &automat_base::SourceMap) -> Vec<Drawing> {
+    let mut out = Vec::new();
+    for (_, f) in map.files() {
+        if !automat_plcopen::is_plcopen_file(&f.name) {
+            continue;
+        }
+        for pou in automat_plcopen::sheet::graphical_pous(&f.text) {
+            let Ok(Found::Sheet(s)) = automat_plcopen::sheet::sheet(&f.text, &pou) else {
+                continue;
+            };
+            let lang = if s.lang == SheetLang::Ld { "LD" } else { "FBD" };
+            // The file's own name: the page is for the operator, not the
+            // folder layout of the machine it runs on.
+            let short = std::path::Path::new(&f.name)
+                .file_name()
+                .map_or(f.name.clone(), |n| n.to_string_lossy().into_owned());
+            let title = format!("{} ({lang}, {short})", s.pou);
+            let diagram = draw(&s).finish(&title);
+            let mut elements = Vec::new();
+            for (b, n) in boxes(&s).into_iter().zip(&s.nodes) {
+                let mut e = Element {
+                    id: b.id,
+                    kind: kind_name(b.kind),
+                    text: n.text.clone(),
+                    x: b.x,
+                    y: b.y,
+                    w: b.w,
+                    h: b.h,
+                    power: None,
+                    value: None,
+                    pins: Vec::new(),
+                };
+                match b.kind {
+                    NodeKind::Contact | NodeKind::Coil => {
+                        e.power = Some(format!("__ld_n{}", b.id));
+                    }
+                    NodeKind::InVar | NodeKind::OutVar | NodeKind::InOutVar if is_path(&n.text) => {
+                        e.value = Some(n.text.clone());
+                    }
+                    NodeKind::Block if is_path(&n.instance) => {
+                        let pins = b.ins.iter().map(|p| (p, false));
+                        for ((name, (x, y)), output) in pins.chain(b.outs.iter().map(|p| (p, true)))
+                        {
+                            if name.is_empty() {
+                                continue;
+                            }
+                            e.pins.push(Pin {
+                                name: name.clone(),
+                                x: *x,
+                                y: *y,
+                                output,
+                                path: format!("{}.{name}", n.instance),
+                            });
+                        }
+                    }
+                    _ => {}
+                }
+                elements.push(e);
+            }
+            out.push(Drawing {
+                pou: s.pou.clone(),
+                lang,
+                file: f.name.clone(),
+                svg: svg::diagram(&diagram),
+                width: diagram.width,
+                height: diagram.height,
+                elements,
+            });
+        }
+    }
+    out
+}

@@ -1,0 +1,110 @@
+//! `.slc` files on the command line (docs/allen-bradley.md): checked and
+//! run without `--lib`, SLC addresses as `--print` and `--trace` paths, the
+//! diagnostics at file:line:col naming the instruction, the overflow trap
+//! as a runtime fault (exit 3).
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn automat(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_automat"))
+        .args(args)
+        .output()
+        .expect("run automat")
+}
+
+fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).to_string()
+}
+
+fn tmp(name: &str, content: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("automat-slc-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let p = dir.join(name);
+    std::fs::write(&p, content).expect("write");
+    p
+}
+
+#[test]
+fn addresses_and_symbols_print_by_name() {
+    let crane = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/crane-slc/crane.slc"
+    );
+    let out = automat(&[
+        "run", crane, "--cycles", "2", "--print", "B3/1", "--print", "X1", "--print", "T4:0.PRE",
+        "--print", "S:1/15", "--print", "B3:0/1", "--print", "I:1/1",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert_eq!(
+        text(&out.stdout),
+        "B3/1 = TRUE\nX1 = TRUE\nT4:0.PRE = 300\nS:1/15 = FALSE\nB3:0/1 = TRUE\nI:1/1 = FALSE\n"
+    );
+    // An address no file of the program holds, and one that is no address.
+    let out = automat(&["run", crane, "--cycles", "1", "--print", "N7:0"]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("is the SLC address of `N7[0]`"),
+        "{}",
+        text(&out.stderr)
+    );
+    let out = automat(&["run", crane, "--cycles", "1", "--print", "B3:0/16"]);
+    assert!(
+        text(&out.stderr).contains("the bit is 0 to 15"),
+        "{}",
+        text(&out.stderr)
+    );
+}
+
+#[test]
+fn diagnostics_name_rung_instruction_and_place() {
+    let p = tmp(
+        "bad.slc",
+        "XIC B3/0 OTE T4:0\nXIC B3/0 BST XIC B3/1 OTE B3/2\n",
+    );
+    let out = automat(&["check", p.to_str().unwrap_or(".")]);
+    assert_eq!(out.status.code(), Some(1));
+    // `automat check` reports on stdout.
+    let err = text(&out.stdout);
+    assert!(
+        err.contains(
+            "bad.slc:1:14: error[E232]: LAD 2 rung 0, `OTE T4:0`: `T4:0` is no bit address"
+        ),
+        "{err}"
+    );
+    assert!(
+        err.contains("bad.slc:2:1: error[E235]: LAD 2 rung 1: a branch is not closed"),
+        "{err}"
+    );
+    assert!(err.ends_with("2 errors, 0 warnings\n"), "{err}");
+}
+
+#[test]
+fn an_unhandled_overflow_is_a_major_fault() {
+    let p = tmp("ov.slc", "DATA N7 2 = 32767\nADD N7:0 1 N7:1\n");
+    let out = automat(&["run", p.to_str().unwrap_or("."), "--cycles", "3"]);
+    assert_eq!(out.status.code(), Some(3), "{}", text(&out.stderr));
+    let err = text(&out.stderr);
+    assert!(err.contains("runtime fault: <slc>/ladder.st:"), "{err}");
+    assert!(err.contains("value 1 outside 0..0"), "{err}");
+    assert!(err.contains("PLC time T#0s"), "{err}");
+}
+
+/// A scenario names the SLC addresses (`B3:0/2`, `T4:0/DN`, `T4:0.ACC`,
+/// `O:3/3`) as the ladder does.
+#[test]
+fn scenarios_take_slc_addresses() {
+    let crane = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/crane-slc");
+    let scn = tmp(
+        "addr.scn",
+        "duration 20s\nat 500ms press Pornire for 200ms\nexpect at 1s B3:0/2 AND O:3/3 AND NOT B3:0/1\nexpect at 16s B3:0/5 AND T4:0.ACC > 0 AND NOT T4:0/DN\nexpect always O:3/3 = M2S AND I:1/1 = Pornire\n",
+    );
+    let shown = scn.display().to_string();
+    let out = automat(&["run", crane, "--scenario", &shown]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).ends_with(&format!("scenario {shown}: every expectation held\n")),
+        "{}",
+        text(&out.stderr)
+    );
+}

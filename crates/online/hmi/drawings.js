@@ -1,0 +1,84 @@
+// LD rungs and FBD networks drawn live: the drawing is the one `automat
+// draw` makes (`GET /api/v1/drawings` gives it as SVG with the box of every
+// element), and this file lays the live state over it: a contact or coil
+// whose power flow (the hidden BOOL `__ld_n<localId>`) is TRUE gets a green
+// frame, a FALSE one a grey frame; a variable element shows its value
+// under it, a block instance the value of each pin beside the pin.
+'use strict';
+
+(function () {
+  const NS = 'http://www.w3.org/2000/svg';
+
+  function s(tag, attrs) {
+    const e = document.createElementNS(NS, tag);
+    for (const [k, v] of Object.entries(attrs || {})) {
+      if (v === undefined || v === null) continue;
+      if (k === 'text') e.textContent = v; else e.setAttribute(k, String(v));
+    }
+    return e;
+  }
+
+  /** The full path of an answer's path for instance `inst` (`.x` is
+   * relative to the instance, anything else a global). */
+  const full = (inst, p) => (p.startsWith('.') ? inst + p : p);
+
+  /** Parses the server's SVG (never as HTML: nothing in it runs). */
+  function svgOf(text) {
+    const doc = new DOMParser().parseFromString(text, 'image/svg+xml');
+    const root = doc.documentElement;
+    if (!root || root.nodeName !== 'svg') return s('svg', { width: 10, height: 10 });
+    for (const bad of root.querySelectorAll('script, foreignObject')) bad.remove();
+    return document.importNode(root, true);
+  }
+
+  /** Draws drawing `d` for instance `inst`: { svg, paths, update(values) }. */
+  function draw(d, inst) {
+    const svg = svgOf(d.svg);
+    svg.classList.add('ld');
+    const layer = s('g', { class: 'live' });
+    svg.append(layer);
+    const paths = [];
+    const marks = [];
+    for (const e of d.elements) {
+      if (e.power) {
+        const p = full(inst, e.power);
+        paths.push(p);
+        const r = s('rect', { class: 'power', x: e.x - 3, y: e.y - 3, width: e.w + 6, height: e.h + 6, rx: 3, 'data-id': e.id });
+        layer.append(r);
+        marks.push((values) => {
+          const v = values.get(p);
+          r.classList.toggle('on', v === 'TRUE');
+          r.classList.toggle('off', v === 'FALSE');
+        });
+      }
+      if (e.value) {
+        const p = full(inst, e.value);
+        paths.push(p);
+        const t = s('text', { class: 'value', x: e.x + e.w / 2, y: e.y + e.h + 12, 'text-anchor': 'middle', 'data-id': e.id });
+        layer.append(t);
+        marks.push((values) => {
+          const v = values.get(p);
+          t.textContent = v === undefined ? '' : String(v);
+          t.classList.toggle('on', v === 'TRUE');
+        });
+      }
+      for (const pin of e.pins || []) {
+        const p = full(inst, pin.path);
+        paths.push(p);
+        const t = s('text', {
+          class: 'value pin', x: pin.output ? pin.x + 6 : pin.x - 6, y: pin.y - 4,
+          'text-anchor': pin.output ? 'start' : 'end', 'data-id': e.id, 'data-pin': pin.name,
+        });
+        layer.append(t);
+        marks.push((values) => {
+          const v = values.get(p);
+          t.textContent = v === undefined ? '' : String(v);
+          t.classList.toggle('on', v === 'TRUE');
+        });
+      }
+    }
+    return { svg, paths, update(values) { for (const m of marks) m(values); } };
+  }
+
+  window.LdDrawing = { draw };
+})();
