@@ -16,13 +16,16 @@
 //! scan for the timers, program file 2 (subroutines inlined at each JSR),
 //! then the overflow trap S:5/0 as a major fault.
 //!
-//! The rungs are generated as ST directly (`emit.rs`), not through the
-//! graphical model of PLCopen LD: `ladder_to_st` is the one function to
-//! replace when the ladder lands in that model.
+//! A rung's contacts, coils and branches go through the graphical model of
+//! PLCopen LD (`network.rs`: a `graphic::Network` lowered by
+//! `graphic::lower`, with the same hidden `__ld_n<id>` power-flow BOOLs);
+//! the other instructions are the ST of `emit.rs` between the network's
+//! segments. `ladder_to_st` is the one place the ladder becomes ST.
 
 mod emit;
 mod instr;
 mod layout;
+mod network;
 mod parse;
 mod sheet;
 
@@ -169,5 +172,44 @@ mod tests {
             println!("{}", st.as_deref().unwrap_or(""));
         }
         assert!(st.is_some_and(|s| s.contains("__SLC_TON(RUNG := __rc")));
+    }
+
+    /// Contacts, coils and branches go through the graphical model: the
+    /// power flow in `__ld_n<id>` BOOLs, ids unique across the segments a
+    /// timer cuts the rung into; a timer inside a branch keeps the rung ST.
+    #[test]
+    fn rungs_lower_through_the_graphical_model() {
+        let mut map = SourceMap::new();
+        map.add(
+            "t.slc",
+            "XIC I:1/0 BST XIC B3:0/1 NXB XIO B3:0/2 BND OTE O:2/0 TON T4:0 0.01 30 0 OTL B3:0/3\n\
+             BST XIC I:1/1 TON T4:1 0.01 5 0 NXB XIC I:1/2 BND OTU B3:0/3\n",
+        );
+        let (st, diags) = translate(&map);
+        assert!(diags.is_empty(), "{diags:?}");
+        let st = st.map(|g| g.0).unwrap_or_default();
+        let rung0 = [
+            "    __rc := __mcr;",
+            "    __ld_n2 := TRUE AND (__rc);",
+            "    __ld_n3 := __ld_n2 AND (I1[8].0);",
+            "    __ld_n4 := __ld_n3 AND (B3[0].1);",
+            "    __ld_n5 := __ld_n3 AND NOT (B3[0].2);",
+            "    __ld_n6 := (__ld_n4 OR __ld_n5);",
+            "    O0[16].0 := __ld_n6;",
+            "    __ld_n7 := __ld_n6;",
+            "    __rc := __ld_n7;",
+            "    __x := __SLC_TON(RUNG := __rc, BASE := 10, D := __d, CTL := T4[0], PRE := T4[1], ACC := T4[2], REM := __rem[0]);",
+            "    __ld_n9 := TRUE AND (__rc);",
+            "    __ld_n10 := __ld_n9;",
+            "    IF __ld_n10 THEN B3[0].3 := TRUE; END_IF;",
+            "    __ld_n11 := __ld_n10;",
+            "    __rc := __ld_n11;",
+            "    (* LAD 2 rung 1 *)",
+            "    __rc := __mcr;",
+            "    __bs[1] := __rc; __bo[1] := FALSE;",
+        ]
+        .join("\n");
+        assert!(st.contains(&rung0), "{st}");
+        assert!(st.contains("    __ld_n11 : BOOL;\n"), "{st}");
     }
 }
