@@ -45,6 +45,9 @@ pub struct Emitter<'a> {
     pub(super) next_id: u32,
     /// The hidden BOOLs of the lowered networks.
     pub(super) hidden: Vec<String>,
+    /// The model element of each contact or coil, by the instruction's
+    /// place in its file: its power flow is `__ld_n<id>`.
+    pub(super) elements: BTreeMap<(automat_base::FileId, u32), u32>,
 }
 
 /// Where the rungs of one inlined file run.
@@ -121,6 +124,7 @@ impl<'a> Emitter<'a> {
             traps: Vec::new(),
             next_id: 1,
             hidden: Vec::new(),
+            elements: BTreeMap::new(),
         }
     }
 

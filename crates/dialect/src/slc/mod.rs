@@ -102,6 +102,84 @@ pub fn sheet(map: &SourceMap, pou: &str) -> Option<automat_plcopen::sheet::Sheet
     sheet::sheet(&project, n)
 }
 
+/// What the HMI shows live on one node of an SLC drawing: the power flow
+/// of a contact or coil (`__ld_n<id>` of the program `SLC`), the bit it
+/// names (`B3:0/1`), a timer's or counter's `ACC` as a pin (name, path).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Live {
+    pub node: u32,
+    pub power: Option<String>,
+    pub value: Option<String>,
+    pub pins: Vec<(String, String)>,
+}
+
+/// A program file drawn (`sheet`) with its live values, and the `.slc`
+/// file holding it.
+pub struct LiveSheet {
+    pub file: String,
+    pub sheet: automat_plcopen::sheet::Sheet,
+    pub live: Vec<Live>,
+}
+
+/// Every program file of the `.slc` files of `map` as the HMI draws it
+/// (none when the ladder has errors: it does not run then).
+pub fn live_sheets(map: &SourceMap) -> Vec<LiveSheet> {
+    let mut project = parse::Project::default();
+    let slc: Vec<_> = map.files().filter(|(_, f)| is_slc_file(&f.name)).collect();
+    for (id, f) in &slc {
+        parse::Reader::new(&mut project, *id).tables(&f.text);
+    }
+    for (id, f) in &slc {
+        parse::Reader::new(&mut project, *id).rungs(&f.text);
+    }
+    if slc.is_empty() || project.diags.iter().any(|d| d.is_error()) {
+        return Vec::new();
+    }
+    // The element ids exactly as `ladder_to_st` numbers them.
+    let mut layout = layout::Layout::new(&mut project);
+    let elements = {
+        let mut e = emit::Emitter::new(&project, &mut layout);
+        e.program();
+        std::mem::take(&mut e.elements)
+    };
+    let mut out = Vec::new();
+    for (&n, f) in &project.files {
+        let Some((sheet, drawn)) = sheet::sheet_drawn(&project, n) else {
+            continue;
+        };
+        let file = f
+            .rungs
+            .first()
+            .map(|r| map.get(r.span.file).name.clone())
+            .unwrap_or_default();
+        let live = drawn
+            .iter()
+            .map(|(node, i)| {
+                let a = match i.ops.first() {
+                    Some(parse::Operand::Addr(a)) => Some(*a),
+                    _ => None,
+                };
+                let text = a.map(sheet::address_text);
+                let bit = matches!(i.mn, "XIC" | "XIO" | "OTE" | "OTL" | "OTU");
+                let acc = matches!(i.mn, "TON" | "TOF" | "RTO" | "CTU" | "CTD");
+                Live {
+                    node: *node,
+                    power: elements
+                        .get(&(i.span.file, i.span.start))
+                        .map(|id| format!("__ld_n{id}")),
+                    value: text.clone().filter(|_| bit),
+                    pins: text
+                        .filter(|_| acc)
+                        .map(|t| vec![("ACC".to_string(), format!("{t}.ACC"))])
+                        .unwrap_or_default(),
+                }
+            })
+            .collect();
+        out.push(LiveSheet { file, sheet, live });
+    }
+    out
+}
+
 /// The data files and rungs as Structured Text (its diagnostics go to the
 /// project's list), with what a fault means at the byte ranges of the
 /// text that raise the SLC's major faults.

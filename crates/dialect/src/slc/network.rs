@@ -146,12 +146,18 @@ impl<'a> Emitter<'a> {
         let var = Text::generated(&self.bit(i), i.span);
         seg.b.at(i.span);
         let p = &seg.power;
-        match i.mn {
+        let id = match i.mn {
             "XIC" => seg.b.contact(var, false, EdgeKind::None, p),
             "XIO" => seg.b.contact(var, true, EdgeKind::None, p),
             "OTL" => seg.b.coil(var, false, Storage::Set, EdgeKind::None, p),
             "OTU" => seg.b.coil(var, false, Storage::Reset, EdgeKind::None, p),
             _ => seg.b.coil(var, false, Storage::None, EdgeKind::None, p),
-        }
+        };
+        // The first emission (a subroutine JSR calls twice is inlined
+        // twice): the one the HMI animates.
+        self.elements
+            .entry((i.span.file, i.span.start))
+            .or_insert(id);
+        id
     }
 }
