@@ -234,6 +234,10 @@ fn the_crane_runs_its_cycle_against_the_plant_over_modbus() {
     }
     assert_eq!(cycles, 1.0, "the crane did not complete its cycle");
     assert_eq!(read_di(&mut hmi), [false, true, false, true, false]);
+    // The PLC sees the rest position at its next poll of the plant, one or
+    // more periods later under load (GS8 -> GS1); at rest nothing else
+    // happens, so a margin cannot hide a wrong state.
+    std::thread::sleep(Duration::from_secs(2));
     drop(hmi);
     assert_eq!(plc.stop(), Some(0));
     let lines = plc.drain();
