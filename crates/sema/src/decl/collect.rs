@@ -185,9 +185,10 @@ impl<'a> Builder<'a> {
         // and ENO; a variable of that name would be a second one, which a
         // call never sets (the body would read FALSE, silently).
         let implicit_en = match self.scopes.get(scope).map(|s| s.owner) {
-            Some(Owner::Pou(id)) => self.pous.get(id.0 as usize).is_some_and(|p| {
-                matches!(p.ast.kind, PouKind::Function | PouKind::FunctionBlock)
-            }),
+            Some(Owner::Pou(id)) => self
+                .pous
+                .get(id.0 as usize)
+                .is_some_and(|p| matches!(p.ast.kind, PouKind::Function | PouKind::FunctionBlock)),
             _ => false,
         };
         for decl in &block.decls {
