@@ -41,7 +41,7 @@ mod fst;
 mod pl7;
 mod pragma;
 mod sections;
-mod slc;
+pub mod slc;
 mod timer;
 mod walk;
 
@@ -127,6 +127,12 @@ pub fn is_slc_file(name: &str) -> bool {
 /// name) in the `.slc` files of `map`, for `automat draw`.
 pub fn slc_sheet(map: &SourceMap, pou: &str) -> Option<automat_plcopen::sheet::Sheet> {
     slc::sheet(map, pou)
+}
+
+/// The SLC-500 program files of `map` drawn for the HMI's live view, with
+/// what to show on each node.
+pub fn slc_live_sheets(map: &SourceMap) -> Vec<slc::LiveSheet> {
+    slc::live_sheets(map)
 }
 
 /// Is `name` a CODESYS V2.3 text export (`*.exp`), read as Structured
@@ -317,6 +323,7 @@ pub fn check_sources(
     }
     if dialects.is_empty() {
         // XML files without a dialect: no rewrite applies.
+        diags.extend(automat_syntax::desugar_namespaces(&mut units, interner));
         diags.extend(automat_syntax::desugar_oop(&mut units, interner));
         let mut analysis = automat_sema::check(&units, interner);
         diags.append(&mut analysis.diagnostics);
@@ -326,6 +333,8 @@ pub fn check_sources(
         return (units, analysis);
     }
     drop_shadowed_library_pous(&mut units, &libs);
+    // The rewrites below see namespaces' items under their flat names.
+    diags.extend(automat_syntax::desugar_namespaces(&mut units, interner));
     let is_user = |u: &SourceUnit| !libs.contains(&u.file);
     let mut marks = Vec::new();
     for unit in units.iter().filter(|u| is_user(u) && (isagraf || pl7)) {

@@ -59,9 +59,7 @@ impl Parser<'_> {
         if ENDS.iter().any(|w| self.is_word(w)) {
             return true;
         }
-        if (self.is_word("METHOD") || self.is_word("PROPERTY"))
-            && matches!(self.nth(1), Tok::Ident(_))
-        {
+        if (self.is_word("METHOD") || self.is_word("PROPERTY")) && self.name_follows() {
             return true;
         }
         (self.is_word("GET") || self.is_word("SET"))
@@ -80,7 +78,7 @@ impl Parser<'_> {
     /// `[ABSTRACT|FINAL]` before a function block's name.
     pub(super) fn fb_modifiers_before_name(&mut self, head: &mut FbHead) {
         loop {
-            let followed_by_name = matches!(self.nth(1), Tok::Ident(_));
+            let followed_by_name = self.name_follows();
             if followed_by_name && self.is_word("ABSTRACT") {
                 self.bump();
                 head.is_abstract = true;
@@ -99,7 +97,10 @@ impl Parser<'_> {
     pub(super) fn fb_head_after_name(&mut self, head: &mut FbHead) {
         if self.eat_word("EXTENDS") {
             head.any = true;
-            head.extends = self.expect_ident("the name of the base after `EXTENDS`");
+            head.extends = self.qualified_ident_here();
+            if head.extends.is_none() {
+                self.expected("the name of the base after `EXTENDS`");
+            }
         }
         if self.eat_word("IMPLEMENTS") {
             head.any = true;
@@ -125,7 +126,8 @@ impl Parser<'_> {
                 }
                 continue;
             }
-            let Some(i) = self.expect_ident(what) else {
+            let Some(i) = self.qualified_ident_here() else {
+                self.expected(what);
                 break;
             };
             out.push(i);
@@ -152,6 +154,17 @@ impl Parser<'_> {
         }
     }
 
+    /// Whether the token after the current one can be a name: modifiers are
+    /// words too, so `METHOD PUBLIC Step` is read by looking one word ahead
+    /// (a contextual keyword such as `STEP` is a name there).
+    fn name_follows(&self) -> bool {
+        match self.nth(1) {
+            Tok::Ident(_) => true,
+            Tok::Kw(k) => k.is_contextual(),
+            _ => false,
+        }
+    }
+
     fn visibility(&mut self) -> (Visibility, Option<Span>) {
         let sp = self.cur_span();
         for (w, v) in [
@@ -160,7 +173,7 @@ impl Parser<'_> {
             ("PROTECTED", Visibility::Protected),
             ("INTERNAL", Visibility::Internal),
         ] {
-            if matches!(self.nth(1), Tok::Ident(_)) && self.eat_word(w) {
+            if self.name_follows() && self.eat_word(w) {
                 return (v, Some(sp));
             }
         }
@@ -200,7 +213,7 @@ impl Parser<'_> {
         let (visibility, visibility_span) = self.visibility();
         let (mut is_abstract, mut is_final, mut is_override) = (false, false, false);
         loop {
-            if !matches!(self.nth(1), Tok::Ident(_)) {
+            if !self.name_follows() {
                 break;
             }
             if self.eat_word("ABSTRACT") {
