@@ -155,7 +155,16 @@ pub(crate) fn attach(parsed: &mut Parsed, links: &[Link], interner: &mut Interne
     let mut bodies: HashMap<String, Pou> = HashMap::new();
     for item in std::mem::take(&mut parsed.unit.items) {
         match item {
-            Item::Pou(p) if links.iter().any(|l| l.hidden == interner.name(p.name.sym)) => {
+            // By name and by place: a POU of the file named `__macroN` is
+            // not taken for a body.
+            Item::Pou(p)
+                if links.iter().any(|l| {
+                    l.hidden == interner.name(p.name.sym)
+                        && p.span.file == l.span.file
+                        && l.span.start <= p.span.start
+                        && p.span.start < l.span.end
+                }) =>
+            {
                 bodies.insert(interner.name(p.name.sym).to_string(), p);
             }
             other => parsed.unit.items.push(other),
