@@ -140,12 +140,18 @@ fn the_hmi_in_headless_chromium() {
         std::fs::copy(root().join("examples/crane-ld").join(f), ld_dir.join(f)).expect("copy");
     }
     let ld = start(&ld_dir, &ld_dir, &["--virtual-clock"]);
+    let slc_dir = temp("crane-slc");
+    for f in ["automat.toml", "crane.slc"] {
+        std::fs::copy(root().join("examples/crane-slc").join(f), slc_dir.join(f)).expect("copy");
+    }
+    let slc = start(&slc_dir, &slc_dir, &["--virtual-clock"]);
     let shots = temp("shots");
     let out = Command::new("python3")
         .arg(root().join("crates/cli/tests/hmi/hmi_browser.py"))
         .args([&plc.url, &plc.token, &load.url, &load.token])
         .arg(&shots)
         .args([&ld.url, &ld.token])
+        .args([&slc.url, &slc.token])
         .output()
         .expect("python3");
     let text = String::from_utf8_lossy(&out.stdout);

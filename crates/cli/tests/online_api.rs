@@ -174,6 +174,23 @@ fn fbd_drawings_through_the_api() {
     interrupt(plc);
 }
 
+/// The SLC-500 ladder's drawing through the API: LAD 2 of the crane run by
+/// the program `SLC`, power flows, bits and the timer's ACC resolved.
+#[test]
+fn slc_drawings_through_the_api() {
+    python_ready();
+    let dir = std::env::temp_dir().join(format!("automat-online-slc-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let src = root().join("examples/crane-slc");
+    for f in ["automat.toml", "crane.slc"] {
+        std::fs::copy(src.join(f), dir.join(f)).expect("copy");
+    }
+    let plc = start(&dir, &["--listen", "0", "--virtual-clock"]);
+    client("slc", &plc);
+    interrupt(plc);
+}
+
 #[test]
 fn the_plant_is_read_and_operated_through_the_api() {
     python_ready();

@@ -41,7 +41,7 @@ mod fst;
 mod pl7;
 mod pragma;
 mod sections;
-mod slc;
+pub mod slc;
 mod timer;
 mod walk;
 
@@ -127,6 +127,12 @@ pub fn is_slc_file(name: &str) -> bool {
 /// name) in the `.slc` files of `map`, for `automat draw`.
 pub fn slc_sheet(map: &SourceMap, pou: &str) -> Option<automat_plcopen::sheet::Sheet> {
     slc::sheet(map, pou)
+}
+
+/// The SLC-500 program files of `map` drawn for the HMI's live view, with
+/// what to show on each node.
+pub fn slc_live_sheets(map: &SourceMap) -> Vec<slc::LiveSheet> {
+    slc::live_sheets(map)
 }
 
 /// Is `name` a CODESYS V2.3 text export (`*.exp`), read as Structured

@@ -39,6 +39,8 @@
     svg.append(layer);
     const paths = [];
     const marks = [];
+    // SLC-500 bits read 1/0, as RSLogix shows them.
+    const shown = (v) => (d.dialect === 'slc' && (v === 'TRUE' || v === 'FALSE') ? (v === 'TRUE' ? '1' : '0') : String(v));
     for (const e of d.elements) {
       if (e.power) {
         const p = full(inst, e.power);
@@ -58,7 +60,7 @@
         layer.append(t);
         marks.push((values) => {
           const v = values.get(p);
-          t.textContent = v === undefined ? '' : String(v);
+          t.textContent = v === undefined ? '' : shown(v);
           t.classList.toggle('on', v === 'TRUE');
         });
       }
@@ -72,7 +74,7 @@
         layer.append(t);
         marks.push((values) => {
           const v = values.get(p);
-          t.textContent = v === undefined ? '' : String(v);
+          t.textContent = v === undefined ? '' : shown(v);
           t.classList.toggle('on', v === 'TRUE');
         });
       }

@@ -26,6 +26,14 @@ use serde_json::{json, Value};
 #[derive(Clone, Debug, Serialize)]
 pub struct Drawing {
     pub pou: String,
+    /// The POU whose instances run this drawing, when it is not `pou`
+    /// (an SLC program file `LAD 2` runs in the program `SLC`).
+    #[serde(skip)]
+    pub runs_in: Option<String>,
+    /// `slc` for an SLC-500 program file: the HMI shows its bits as 1/0,
+    /// as RSLogix does.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dialect: Option<&'static str>,
     /// `LD` or `FBD`.
     pub lang: &'static str,
     pub file: String,
@@ -83,7 +91,8 @@ pub fn answer(drawings: &[Drawing], session: &Session, tree: &[Node]) -> Value {
     let list: Vec<Value> = drawings
         .iter()
         .map(|d| {
-            let at = instances_of(&d.pou, session.program(), tree);
+            let pou = d.runs_in.as_deref().unwrap_or(&d.pou);
+            let at = instances_of(pou, session.program(), tree);
             let first = at.first().map(String::as_str);
             let mut d = d.clone();
             for e in &mut d.elements {

@@ -188,17 +188,32 @@ fn scopes(program: &Program) -> Vec<Option<String>> {
 }
 
 fn walk_path(program: &Program, text: &str, sels: &[Sel]) -> Result<Access, String> {
+    // A path that fails inside the only program may still be right as
+    // given: `Crc.crc` in `PROGRAM Crc` with a variable `crc` is first read
+    // as `Crc.crc.crc` (no such member), then as the program's `crc`. When
+    // every scope fails, the first scope's error is the one shown.
+    let mut first_error = None;
     for scope in scopes(program) {
         let mut all: Vec<Sel> = scope.iter().map(|s| Sel::Name(s.clone())).collect();
         let scoped = all.len();
         all.extend_from_slice(sels);
         if let Some((k, w)) = root(program, &all, scoped) {
             let mut w = w;
-            for s in all.iter().skip(k) {
-                w.step(s)?;
+            let walked = all
+                .iter()
+                .skip(k)
+                .try_for_each(|s| w.step(s))
+                .and_then(|()| w.finish());
+            match walked {
+                Ok(access) => return Ok(access),
+                Err(e) => {
+                    first_error.get_or_insert(e);
+                }
             }
-            return w.finish();
         }
+    }
+    if let Some(e) = first_error {
+        return Err(e);
     }
     let first = match sels.first() {
         Some(Sel::Name(n)) => n.as_str(),

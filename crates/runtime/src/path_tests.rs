@@ -288,3 +288,23 @@ fn several_instances_need_qualified_names() {
     assert_eq!(resolve(&p, "p2.n"), Ok(at(8, None, E::Int)));
     assert!(resolve(&p, "n").is_err());
 }
+
+/// A variable named like its program (`crc` in `PROGRAM Crc`, the only
+/// program): `Crc.crc` is first read inside the program as `Crc.crc.crc`,
+/// which has no such member, then as given; a path wrong both ways keeps
+/// the error of the first reading.
+#[test]
+fn a_variable_named_like_its_program() {
+    let mut p = program(vec![task("CRC", None, 0, vec![inst("CRC", 0, 0)])]);
+    p.image_size = 16;
+    p.symbols = SymbolTable::new(vec![
+        entry("Crc.crc", 0, el(E::Dword)),
+        entry("CRC.X", 4, el(E::Int)),
+    ]);
+    assert_eq!(resolve(&p, "Crc.crc"), Ok(at(0, None, E::Dword)));
+    assert_eq!(resolve(&p, "crc"), Ok(at(0, None, E::Dword)));
+    assert_eq!(resolve(&p, "crc.x"), Ok(at(4, None, E::Int)));
+    assert_eq!(resolve(&p, "x"), Ok(at(4, None, E::Int)));
+    let e = resolve(&p, "crc.crc.y").unwrap_err();
+    assert!(e.contains("no member"), "{e}");
+}

@@ -2,7 +2,8 @@
 //! each graphical POU of the PLCopen files drawn as `automat draw` draws
 //! it, with the box of every element and, per element, the variables whose
 //! values go on it, relative to an instance of the POU (the server
-//! resolves them against the running program).
+//! resolves them against the running program). The SLC-500 program files
+//! too (`slc_drawings`).
 
 use super::sheet::{boxes, draw};
 use crate::plot::svg;
@@ -102,6 +103,8 @@ pub fn drawings(map: &automat_base::SourceMap) -> Vec<Drawing> {
             }
             out.push(Drawing {
                 pou: s.pou.clone(),
+                runs_in: None,
+                dialect: None,
                 lang,
                 file: f.name.clone(),
                 svg: svg::diagram(&diagram),
@@ -110,6 +113,66 @@ pub fn drawings(map: &automat_base::SourceMap) -> Vec<Drawing> {
                 elements,
             });
         }
+    }
+    out.extend(slc_drawings(map));
+    out
+}
+
+/// The SLC-500 program files, drawn as `automat draw` draws them: contacts
+/// and coils framed by their power flow (the `__ld_n<id>` the rung's
+/// network keeps in the program `SLC`), the bit each names, a timer's or
+/// counter's ACC beside its ENO.
+fn slc_drawings(map: &automat_base::SourceMap) -> Vec<Drawing> {
+    let mut out = Vec::new();
+    for ls in automat_dialect::slc_live_sheets(map) {
+        let s = &ls.sheet;
+        let short = std::path::Path::new(&ls.file)
+            .file_name()
+            .map_or(ls.file.clone(), |n| n.to_string_lossy().into_owned());
+        let title = format!("{} (LD, {short})", s.pou);
+        let diagram = draw(s).finish(&title);
+        let mut elements = Vec::new();
+        for (b, n) in boxes(s).into_iter().zip(&s.nodes) {
+            let live = ls.live.iter().find(|l| l.node == b.id);
+            let eno = b.outs.iter().find(|p| p.0 == "ENO").map(|p| p.1);
+            let pins = match (live, eno) {
+                (Some(l), Some((x, y))) => l
+                    .pins
+                    .iter()
+                    .map(|(name, path)| Pin {
+                        name: name.clone(),
+                        x,
+                        y,
+                        output: true,
+                        path: path.clone(),
+                    })
+                    .collect(),
+                _ => Vec::new(),
+            };
+            elements.push(Element {
+                id: b.id,
+                kind: kind_name(b.kind),
+                text: n.text.clone(),
+                x: b.x,
+                y: b.y,
+                w: b.w,
+                h: b.h,
+                power: live.and_then(|l| l.power.clone()),
+                value: live.and_then(|l| l.value.clone()),
+                pins,
+            });
+        }
+        out.push(Drawing {
+            pou: s.pou.clone(),
+            runs_in: Some("SLC".to_string()),
+            dialect: Some("slc"),
+            lang: "LD",
+            file: ls.file.clone(),
+            svg: svg::diagram(&diagram),
+            width: diagram.width,
+            height: diagram.height,
+            elements,
+        });
     }
     out
 }

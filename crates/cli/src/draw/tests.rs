@@ -306,3 +306,57 @@ fn slc_rungs_are_drawn_as_ladder() {
         s
     );
 }
+
+/// The SLC crane's ladder in the HMI's live drawings: LAD 2 as `automat
+/// draw` draws it, run in the program `SLC`, its contacts and coils framed
+/// by the `__ld_n<id>` power flow of the rung networks, each showing its
+/// bit, the dwell timer its ACC.
+#[test]
+fn live_drawings_of_the_slc_ladder() {
+    let mut map = SourceMap::new();
+    let rel = "examples/crane-slc/crane.slc";
+    let text = std::fs::read_to_string(root().join(rel)).unwrap_or_default();
+    map.add(rel, &text);
+    let ds = super::live::drawings(&map);
+    let names: Vec<(&str, &str, Option<&str>)> = ds
+        .iter()
+        .map(|d| (d.pou.as_str(), d.lang, d.runs_in.as_deref()))
+        .collect();
+    assert_eq!(names, [("LAD 2 MAIN", "LD", Some("SLC"))]);
+    let lad = &ds[0];
+    assert!(lad.svg.starts_with("<svg ") && lad.svg.contains("class=\"contact\""));
+    let shown = |text: &str| {
+        lad.elements
+            .iter()
+            .find(|e| e.text == text)
+            .map(|e| (e.kind, e.power.clone(), e.value.clone(), e.pins.len()))
+    };
+    // R1a: XIC Pornire (ids 5, 6: the rung network's rail and `__rc`
+    // contact), then the OSR (a box: ST, no power of its own).
+    assert_eq!(
+        shown("Pornire I:1/1"),
+        Some(("contact", Some("__ld_n7".into()), Some("I:1/1".into()), 0))
+    );
+    let osr = lad.elements.iter().find(|e| e.text.starts_with("OSR"));
+    assert!(
+        osr.is_some_and(|e| e.power.is_none() && e.kind == "block"),
+        "{osr:?}"
+    );
+    let powered = lad.elements.iter().filter(|e| e.power.is_some()).count();
+    let bits = lad
+        .elements
+        .iter()
+        .filter(|e| matches!(e.kind, "contact" | "coil"))
+        .count();
+    assert_eq!(powered, bits, "every contact and coil has its power flow");
+    let ton = lad.elements.iter().find(|e| e.text.starts_with("TON"));
+    let pins: Vec<(&str, &str)> = ton
+        .map(|e| {
+            e.pins
+                .iter()
+                .map(|p| (p.name.as_str(), p.path.as_str()))
+                .collect()
+        })
+        .unwrap_or_default();
+    assert_eq!(pins, [("ACC", "T4:0.ACC")]);
+}

@@ -416,13 +416,42 @@ def ladder(d, base, token, shots):
     check("no script errors on the LD page", not errors, errors)
 
 
+def slc_ladder(d, base, token):
+    """The SLC crane's LAD 2 live: XIC X1 (B3:0/1) framed by its rung
+    network's power flow and showing its bit as 1/0, as the API reads them."""
+    api = Api(base, token)
+    ds = requests.get(base + "/api/v1/drawings", headers=api.h, timeout=30).json()["drawings"]
+    check("slc: one drawing, LAD 2 run by SLC",
+          [(x["pou"], x["instances"]) for x in ds] == [("LAD 2 MAIN", ["SLC"])], ds and ds[0]["pou"])
+    x1 = next((e for e in ds[0]["elements"] if e["kind"] == "contact" and e["text"] == "X1 B3:0/1"), None) if ds else None
+    check("slc: XIC X1 has a power flow and its bit", x1 and x1.get("power") and x1.get("value") == "B3:0/1", x1)
+    if not x1:
+        return
+    api.step(3)
+    power = api.read("SLC" + x1["power"])["SLC" + x1["power"]]
+    bit = api.read("B3:0/1")["B3:0/1"]
+    check("slc: step 1 active at rest (X1 TRUE), its contact powered", (bit, power) == ("TRUE", "TRUE"), (bit, power))
+    d.get(base + "/?token=" + token + "#drawings")
+    frame = lambda: d.execute_script(
+        f"const r = document.querySelector('#drawing-area .live rect.power[data-id=\"{x1['id']}\"]');"
+        "return r ? r.getAttribute('class') : null;")
+    text = lambda: d.execute_script(
+        f"const t = document.querySelector('#drawing-area .live text.value[data-id=\"{x1['id']}\"]');"
+        "return t ? t.textContent : null;")
+    v = wait(d, "slc frame", lambda: frame() == "power on" and text() == "1")
+    check("slc: the page frames XIC X1 powered (green) and shows B3:0/1 as 1", v, (frame(), text()))
+    errors = console_errors(d)
+    check("no script errors on the SLC page", not errors, errors)
+
+
 def main():
-    crane_url, crane_token, load_url, load_token, shots, ld_url, ld_token = sys.argv[1:8]
+    crane_url, crane_token, load_url, load_token, shots, ld_url, ld_token, slc_url, slc_token = sys.argv[1:10]
     d = browser()
     try:
         crane(d, crane_url, crane_token, shots)
         load(d, load_url, load_token, shots)
         ladder(d, ld_url, ld_token, shots)
+        slc_ladder(d, slc_url, slc_token)
     finally:
         d.quit()
     print(f"{passed} passed, {failed} failed")

@@ -447,6 +447,34 @@ def fbd(base, token):
               set(first.get("values", {})) == {"Measure.Filter.XOUT", "Reg_temp.timer_pi.Q"}, first)
 
 
+def slc(base, token):
+    """GET /api/v1/drawings on the crane in SLC-500 ladder: LAD 2 run by the
+    program SLC, its contacts' and coils' power flows (the rung networks'
+    hidden __ld_n BOOLs) relative to the instance, the bits and the dwell
+    timer's ACC global SLC addresses, all readable."""
+    eng = Api(base, token)
+    r = eng.get("/api/v1/drawings")
+    check("slc drawings: 200", r.status_code == 200, f"{r.status_code} {r.text[:200]}")
+    ds = r.json()["drawings"] if r.status_code == 200 else []
+    check("slc drawings: LAD 2 run by the program SLC",
+          [(d["pou"], d["lang"], d["instances"]) for d in ds] == [("LAD 2 MAIN", "LD", ["SLC"])],
+          [(d["pou"], d["instances"]) for d in ds])
+    es = ds[0]["elements"] if ds else []
+    pornire = [e for e in es if e["text"] == "Pornire I:1/1"]
+    check("slc drawings: XIC Pornire framed by its power flow, showing its bit",
+          [(e.get("power"), e.get("value")) for e in pornire] == [(".__ld_n7", "I:1/1")], pornire)
+    ton = [e for e in es if e["text"].startswith("TON")]
+    check("slc drawings: the TON shows its ACC",
+          [[(p["name"], p["path"]) for p in e["pins"]] for e in ton] == [[("ACC", "T4:0.ACC")]], ton)
+    unresolved = [e["id"] for e in es if e["kind"] in ("contact", "coil") and not e.get("power")]
+    check("slc drawings: every contact and coil has a power flow the program has", unresolved == [], unresolved)
+    eng.step(3)
+    v = eng.read("SLC.__ld_n7", "I:1/1", "T4:0.ACC", "B3:0/1")
+    check("slc drawings: the paths read",
+          set(v) == {"SLC.__ld_n7", "I:1/1", "T4:0.ACC", "B3:0/1"} and v["B3:0/1"] in ("TRUE", "FALSE"), v)
+    check("slc drawings: marked as SLC (the HMI shows bits as 1/0)", ds[0].get("dialect") == "slc" if ds else False)
+
+
 def main():
     mode, base, token = sys.argv[1:4]
     if mode == "exact":
@@ -457,6 +485,8 @@ def main():
         fst(base, token)
     elif mode == "fbd":
         fbd(base, token)
+    elif mode == "slc":
+        slc(base, token)
     elif mode == "tls":
         tls(base, token, sys.argv[4])
     else:

@@ -40,10 +40,18 @@ pub struct Emitter<'a> {
     /// [`Emitter::here`] named them; the one that set it last is
     /// `__slc_trap` = its index + 1 at the end of the scan.
     pub traps: Vec<String>,
+    /// The next element id of the rung networks (`network.rs`): ids are
+    /// unique in the POU, so each `__ld_n<id>` names one element.
+    pub(super) next_id: u32,
+    /// The hidden BOOLs of the lowered networks.
+    pub(super) hidden: Vec<String>,
+    /// The model element of each contact or coil, by the instruction's
+    /// place in its file: its power flow is `__ld_n<id>`.
+    pub(super) elements: BTreeMap<(automat_base::FileId, u32), u32>,
 }
 
 /// Where the rungs of one inlined file run.
-struct Level {
+pub(super) struct Level {
     /// The segment loop's number, when the file has one.
     seg: Option<u32>,
     /// The first branch slot.
@@ -114,6 +122,9 @@ impl<'a> Emitter<'a> {
             pids: BTreeMap::new(),
             here: String::new(),
             traps: Vec::new(),
+            next_id: 1,
+            hidden: Vec::new(),
+            elements: BTreeMap::new(),
         }
     }
 
@@ -170,6 +181,9 @@ impl<'a> Emitter<'a> {
         );
         for k in 0..self.loops {
             let _ = writeln!(s, "    __pc{k} : INT;\n    __j{k} : BOOL;");
+        }
+        for h in &self.hidden {
+            let _ = writeln!(s, "    {h} : BOOL;");
         }
         s.push_str("END_VAR\n");
         s.push_str("    __now := TIME_TO_LINT(__SCAN_TIME());\n    IF __slc_started THEN __d := LINT_TO_DINT(__now - __slc_last); ELSE __d := 0; END_IF;\n    __slc_last := __now;\n    (* S:1/15 first pass *)\n    S2[1].15 := NOT __slc_started;\n    __mcr := TRUE;\n    __tnd := FALSE;\n    __slc_trap := 0;\n");
@@ -305,6 +319,10 @@ impl<'a> Emitter<'a> {
             .iter()
             .any(|e| matches!(e, Elem::Ins(i) if i.mn == "MCR"));
         let _ = writeln!(s, "    __rc := {};", if mcr { "TRUE" } else { "__mcr" });
+        if super::network::fits(rung) {
+            self.rung_network(n, r, rung, level, &mut s);
+            return s;
+        }
         let mut depth = 0usize;
         for e in &rung.elems {
             match e {
@@ -342,7 +360,12 @@ impl<'a> Emitter<'a> {
         s
     }
 
-    fn ins(&mut self, n: u32, r: usize, i: &Ins, level: &Level) -> String {
+    /// The bit an XIC/XIO/OTE/OTL/OTU names, as an ST place.
+    pub(super) fn bit(&self, i: &Ins) -> String {
+        place(addr(&i.ops.first().cloned().unwrap_or(Operand::Int(0))))
+    }
+
+    pub(super) fn ins(&mut self, n: u32, r: usize, i: &Ins, level: &Level) -> String {
         self.here = format!("LAD {n} rung {r}, `{}`", i.text);
         let ops = &i.ops;
         let op = |k: usize| ops.get(k).cloned().unwrap_or(Operand::Int(0));

@@ -16,13 +16,16 @@
 //! scan for the timers, program file 2 (subroutines inlined at each JSR),
 //! then the overflow trap S:5/0 as a major fault.
 //!
-//! The rungs are generated as ST directly (`emit.rs`), not through the
-//! graphical model of PLCopen LD: `ladder_to_st` is the one function to
-//! replace when the ladder lands in that model.
+//! A rung's contacts, coils and branches go through the graphical model of
+//! PLCopen LD (`network.rs`: a `graphic::Network` lowered by
+//! `graphic::lower`, with the same hidden `__ld_n<id>` power-flow BOOLs);
+//! the other instructions are the ST of `emit.rs` between the network's
+//! segments. `ladder_to_st` is the one place the ladder becomes ST.
 
 mod emit;
 mod instr;
 mod layout;
+mod network;
 mod parse;
 mod sheet;
 
@@ -99,6 +102,84 @@ pub fn sheet(map: &SourceMap, pou: &str) -> Option<automat_plcopen::sheet::Sheet
     sheet::sheet(&project, n)
 }
 
+/// What the HMI shows live on one node of an SLC drawing: the power flow
+/// of a contact or coil (`__ld_n<id>` of the program `SLC`), the bit it
+/// names (`B3:0/1`), a timer's or counter's `ACC` as a pin (name, path).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Live {
+    pub node: u32,
+    pub power: Option<String>,
+    pub value: Option<String>,
+    pub pins: Vec<(String, String)>,
+}
+
+/// A program file drawn (`sheet`) with its live values, and the `.slc`
+/// file holding it.
+pub struct LiveSheet {
+    pub file: String,
+    pub sheet: automat_plcopen::sheet::Sheet,
+    pub live: Vec<Live>,
+}
+
+/// Every program file of the `.slc` files of `map` as the HMI draws it
+/// (none when the ladder has errors: it does not run then).
+pub fn live_sheets(map: &SourceMap) -> Vec<LiveSheet> {
+    let mut project = parse::Project::default();
+    let slc: Vec<_> = map.files().filter(|(_, f)| is_slc_file(&f.name)).collect();
+    for (id, f) in &slc {
+        parse::Reader::new(&mut project, *id).tables(&f.text);
+    }
+    for (id, f) in &slc {
+        parse::Reader::new(&mut project, *id).rungs(&f.text);
+    }
+    if slc.is_empty() || project.diags.iter().any(|d| d.is_error()) {
+        return Vec::new();
+    }
+    // The element ids exactly as `ladder_to_st` numbers them.
+    let mut layout = layout::Layout::new(&mut project);
+    let elements = {
+        let mut e = emit::Emitter::new(&project, &mut layout);
+        e.program();
+        std::mem::take(&mut e.elements)
+    };
+    let mut out = Vec::new();
+    for (&n, f) in &project.files {
+        let Some((sheet, drawn)) = sheet::sheet_drawn(&project, n) else {
+            continue;
+        };
+        let file = f
+            .rungs
+            .first()
+            .map(|r| map.get(r.span.file).name.clone())
+            .unwrap_or_default();
+        let live = drawn
+            .iter()
+            .map(|(node, i)| {
+                let a = match i.ops.first() {
+                    Some(parse::Operand::Addr(a)) => Some(*a),
+                    _ => None,
+                };
+                let text = a.map(sheet::address_text);
+                let bit = matches!(i.mn, "XIC" | "XIO" | "OTE" | "OTL" | "OTU");
+                let acc = matches!(i.mn, "TON" | "TOF" | "RTO" | "CTU" | "CTD");
+                Live {
+                    node: *node,
+                    power: elements
+                        .get(&(i.span.file, i.span.start))
+                        .map(|id| format!("__ld_n{id}")),
+                    value: text.clone().filter(|_| bit),
+                    pins: text
+                        .filter(|_| acc)
+                        .map(|t| vec![("ACC".to_string(), format!("{t}.ACC"))])
+                        .unwrap_or_default(),
+                }
+            })
+            .collect();
+        out.push(LiveSheet { file, sheet, live });
+    }
+    out
+}
+
 /// The data files and rungs as Structured Text (its diagnostics go to the
 /// project's list), with what a fault means at the byte ranges of the
 /// text that raise the SLC's major faults.
@@ -169,5 +250,44 @@ mod tests {
             println!("{}", st.as_deref().unwrap_or(""));
         }
         assert!(st.is_some_and(|s| s.contains("__SLC_TON(RUNG := __rc")));
+    }
+
+    /// Contacts, coils and branches go through the graphical model: the
+    /// power flow in `__ld_n<id>` BOOLs, ids unique across the segments a
+    /// timer cuts the rung into; a timer inside a branch keeps the rung ST.
+    #[test]
+    fn rungs_lower_through_the_graphical_model() {
+        let mut map = SourceMap::new();
+        map.add(
+            "t.slc",
+            "XIC I:1/0 BST XIC B3:0/1 NXB XIO B3:0/2 BND OTE O:2/0 TON T4:0 0.01 30 0 OTL B3:0/3\n\
+             BST XIC I:1/1 TON T4:1 0.01 5 0 NXB XIC I:1/2 BND OTU B3:0/3\n",
+        );
+        let (st, diags) = translate(&map);
+        assert!(diags.is_empty(), "{diags:?}");
+        let st = st.map(|g| g.0).unwrap_or_default();
+        let rung0 = [
+            "    __rc := __mcr;",
+            "    __ld_n2 := TRUE AND (__rc);",
+            "    __ld_n3 := __ld_n2 AND (I1[8].0);",
+            "    __ld_n4 := __ld_n3 AND (B3[0].1);",
+            "    __ld_n5 := __ld_n3 AND NOT (B3[0].2);",
+            "    __ld_n6 := (__ld_n4 OR __ld_n5);",
+            "    O0[16].0 := __ld_n6;",
+            "    __ld_n7 := __ld_n6;",
+            "    __rc := __ld_n7;",
+            "    __x := __SLC_TON(RUNG := __rc, BASE := 10, D := __d, CTL := T4[0], PRE := T4[1], ACC := T4[2], REM := __rem[0]);",
+            "    __ld_n9 := TRUE AND (__rc);",
+            "    __ld_n10 := __ld_n9;",
+            "    IF __ld_n10 THEN B3[0].3 := TRUE; END_IF;",
+            "    __ld_n11 := __ld_n10;",
+            "    __rc := __ld_n11;",
+            "    (* LAD 2 rung 1 *)",
+            "    __rc := __mcr;",
+            "    __bs[1] := __rc; __bo[1] := FALSE;",
+        ]
+        .join("\n");
+        assert!(st.contains(&rung0), "{st}");
+        assert!(st.contains("    __ld_n11 : BOOL;\n"), "{st}");
     }
 }

@@ -16,6 +16,8 @@ type From = Vec<(u32, Option<String>)>;
 struct Build<'a> {
     p: &'a Project,
     nodes: Vec<SheetNode>,
+    /// The instruction each node draws (for the HMI's live values).
+    drawn: Vec<(u32, Ins)>,
     /// The top of the rung being placed.
     top: f64,
 }
@@ -109,6 +111,7 @@ impl Build<'_> {
                 vec![pin("ENO", &Vec::new())],
                 pos,
             );
+            self.drawn.push((id, i.clone()));
             return vec![(id, Some("ENO".to_string()))];
         } else {
             self.node_at(
@@ -120,6 +123,7 @@ impl Build<'_> {
                 pos,
             )
         };
+        self.drawn.push((id, i.clone()));
         vec![(id, None)]
     }
 
@@ -192,7 +196,7 @@ impl Build<'_> {
 }
 
 /// The address as RSLogix writes it (`B3:0/1`, `T4:0/DN`, `I:1/1`).
-fn address_text(a: automat_base::slc::Address) -> String {
+pub(super) fn address_text(a: automat_base::slc::Address) -> String {
     use automat_base::slc::{FileType, Part};
     let file = match a.ty {
         FileType::I | FileType::O | FileType::S => a.ty.letter().to_string(),
@@ -251,10 +255,17 @@ fn address_text(a: automat_base::slc::Address) -> String {
 
 /// The sheet of program file `lad` (`None` when the project has none).
 pub fn sheet(p: &Project, lad: u32) -> Option<Sheet> {
+    sheet_drawn(p, lad).map(|(s, _)| s)
+}
+
+/// The sheet of program file `lad` and the instruction each of its
+/// nodes draws (by node id).
+pub fn sheet_drawn(p: &Project, lad: u32) -> Option<(Sheet, Vec<(u32, Ins)>)> {
     let f = p.files.get(&lad)?;
     let mut b = Build {
         p,
         nodes: Vec::new(),
+        drawn: Vec::new(),
         top: 40.0,
     };
     // One left rail per rung, the rung's comment above it.
@@ -287,9 +298,10 @@ pub fn sheet(p: &Project, lad: u32) -> Option<Sheet> {
     } else {
         format!("LAD {lad} {}", f.name)
     };
-    Some(Sheet {
+    let sheet = Sheet {
         pou: name,
         lang: SheetLang::Ld,
         nodes: b.nodes,
-    })
+    };
+    Some((sheet, b.drawn))
 }

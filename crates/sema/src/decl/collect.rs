@@ -181,9 +181,35 @@ impl<'a> Builder<'a> {
                 .map(|p| p.ast.name),
             _ => None,
         };
+        // Every call of a function or function block has the implicit EN
+        // and ENO; a variable of that name would be a second one, which a
+        // call never sets (the body would read FALSE, silently).
+        let implicit_en = match self.scopes.get(scope).map(|s| s.owner) {
+            Some(Owner::Pou(id)) => self
+                .pous
+                .get(id.0 as usize)
+                .is_some_and(|p| matches!(p.ast.kind, PouKind::Function | PouKind::FunctionBlock)),
+            _ => false,
+        };
         for decl in &block.decls {
             let mut first = None;
             for &name in &decl.names {
+                if implicit_en && (name.sym == self.syms.en || name.sym == self.syms.eno) {
+                    let n = self.name(name.sym);
+                    let what = if name.sym == self.syms.en {
+                        "enable input"
+                    } else {
+                        "enable output"
+                    };
+                    self.emit(Diagnostic::error(
+                        Code::E023,
+                        name.span,
+                        format!(
+                            "`{n}` is the implicit {what} of every call and is declared already: rename this variable"
+                        ),
+                    ));
+                    // Still declared, so its uses are not reported again.
+                }
                 if let Some(f) = fn_name.filter(|f| f.sym == name.sym) {
                     let n = self.name(name.sym);
                     self.emit(

@@ -106,6 +106,14 @@ impl Builder {
         }
     }
 
+    /// Numbers the elements from `id` on (instead of 1): a front end that
+    /// lowers several networks into one POU keeps their hidden
+    /// `__ld_n<id>` names apart.
+    pub fn first_id(mut self, id: u32) -> Builder {
+        self.next_id = id.max(1);
+        self
+    }
+
     /// The source range the next elements stand for (their diagnostics and
     /// generated words point there).
     pub fn at(&mut self, span: Span) {

@@ -59,9 +59,7 @@ impl Parser<'_> {
         if ENDS.iter().any(|w| self.is_word(w)) {
             return true;
         }
-        if (self.is_word("METHOD") || self.is_word("PROPERTY"))
-            && matches!(self.nth(1), Tok::Ident(_))
-        {
+        if (self.is_word("METHOD") || self.is_word("PROPERTY")) && self.name_follows() {
             return true;
         }
         (self.is_word("GET") || self.is_word("SET"))
@@ -80,7 +78,7 @@ impl Parser<'_> {
     /// `[ABSTRACT|FINAL]` before a function block's name.
     pub(super) fn fb_modifiers_before_name(&mut self, head: &mut FbHead) {
         loop {
-            let followed_by_name = matches!(self.nth(1), Tok::Ident(_));
+            let followed_by_name = self.name_follows();
             if followed_by_name && self.is_word("ABSTRACT") {
                 self.bump();
                 head.is_abstract = true;
@@ -156,6 +154,17 @@ impl Parser<'_> {
         }
     }
 
+    /// Whether the token after the current one can be a name: modifiers are
+    /// words too, so `METHOD PUBLIC Step` is read by looking one word ahead
+    /// (a contextual keyword such as `STEP` is a name there).
+    fn name_follows(&self) -> bool {
+        match self.nth(1) {
+            Tok::Ident(_) => true,
+            Tok::Kw(k) => k.is_contextual(),
+            _ => false,
+        }
+    }
+
     fn visibility(&mut self) -> (Visibility, Option<Span>) {
         let sp = self.cur_span();
         for (w, v) in [
@@ -164,7 +173,7 @@ impl Parser<'_> {
             ("PROTECTED", Visibility::Protected),
             ("INTERNAL", Visibility::Internal),
         ] {
-            if matches!(self.nth(1), Tok::Ident(_)) && self.eat_word(w) {
+            if self.name_follows() && self.eat_word(w) {
                 return (v, Some(sp));
             }
         }
@@ -204,7 +213,7 @@ impl Parser<'_> {
         let (visibility, visibility_span) = self.visibility();
         let (mut is_abstract, mut is_final, mut is_override) = (false, false, false);
         loop {
-            if !matches!(self.nth(1), Tok::Ident(_)) {
+            if !self.name_follows() {
                 break;
             }
             if self.eat_word("ABSTRACT") {
