@@ -256,7 +256,7 @@ codes! {
     E177 => "invalid name in PLCopen XML",
         "A `name`, `typeName`, `instanceName`, `label` or a variable of a contact or coil is not an IEC 61131-3 identifier (letters, digits and underscores, not starting with a digit).";
     E178 => "not expressible in PLCopen XML",
-        "`automat export` met a construct TC6 XML has no place for: a VAR_GLOBAL outside a CONFIGURATION, VAR_ACCESS or VAR_CONFIG, connections of a program instance, an `ARRAY [*]`, an R_EDGE/F_EDGE input, a vendor dialect. Move it into a form the format has (globals into a configuration) or leave the project in ST.";
+        "`automat export` met a construct TC6 XML has no place for: a VAR_GLOBAL outside a CONFIGURATION, VAR_ACCESS or VAR_CONFIG, connections of a program instance, an `ARRAY [*]`, an R_EDGE/F_EDGE input, a vendor dialect, a class, interface or NAMESPACE (and a POU's USING). Move it into a form the format has (globals into a configuration) or leave the project in ST.";
     E180 => "invalid operand",
         "Festo FST dialect: the operand cannot be written by this instruction: inputs (`In.m`, `IWn`) are read-only (FST's \"invalid operand, I0.0\"), SET/RESET/SHIFT take a bit operand, INC/DEC a word, and a LOAD's destinations must have the type of what it loaded.";
     E181 => "SET or RESET missing",
@@ -292,7 +292,7 @@ codes! {
     E206 => "unknown method",
         "The call names no method of the class or interface of its instance (methods are looked up in the class and its bases, and for interface variables in the interface and the interfaces it extends).";
     E207 => "method not accessible",
-        "A PRIVATE method or property is callable only from the methods and body of its own class, a PROTECTED one also from derived classes, an INTERNAL one from the same namespace (here: the same project).";
+        "A PRIVATE method or property is callable only from the methods and body of its own class, a PROTECTED one also from derived classes, an INTERNAL one from code of the same namespace (not the nested ones; a class outside any namespace: code outside namespaces).";
     E208 => "THIS or SUPER out of place",
         "`THIS` is the current instance, inside a method or the body of a function block or class; `SUPER` its base part, only in a class that EXTENDS another. Write them dereferenced: `THIS^.x`, `SUPER^.m()`.";
     E209 => "duplicate method",
@@ -307,6 +307,11 @@ codes! {
         "A class has more than 64 levels of bases, or the project's classes need more than 50,000 method bodies (every class compiles its own copy of each inherited method). Flatten the hierarchy.";
     E214 => "bad __QUERYINTERFACE or __QUERYPOINTER",
         "CODESYS's `__QUERYINTERFACE(source, dest)` takes two arguments: an interface value (a variable, member, element or call result; assign an instance to an interface variable first) and an interface variable, member or element, which it sets to the source's instance when that instance's class implements dest's interface (the result TRUE), or to no instance (FALSE). `__QUERYPOINTER(source, dest)` takes an interface value and a pointer variable, which it sets to the address of the source's instance (TRUE) or to 0 (FALSE).";
+
+    E215 => "unknown namespace",
+        "A `USING` names a namespace that no `NAMESPACE ... END_NAMESPACE` of the project declares (namespaces are named from the global one: `USING Plant.Motion;`, or relative to the enclosing namespace).";
+    E216 => "ambiguous name from USING",
+        "The name is declared in none of the enclosing namespaces but in two or more of the namespaces named by `USING`: qualify it (`Motion.Clamp`) to say which one is meant.";
 
     // ---- Allen-Bradley SLC-500 ladder (automat-dialect, slc/) ----
     E230 => "unknown SLC-500 instruction",

@@ -196,3 +196,35 @@ fn export_refuses_object_orientation() {
     let run = automat(&["run", &s, "--cycles", "2", "--print", "x"]);
     assert_eq!(String::from_utf8_lossy(&run.stdout), "x = 2\n");
 }
+
+/// `automat export` refuses namespaces and a POU's USING (E178, exit 1):
+/// TC6 2.01 has no element for them; the project still runs.
+#[test]
+fn export_refuses_namespaces() {
+    let d = dir("export-namespace");
+    let src = d.join("ns.st");
+    std::fs::write(
+        &src,
+        "NAMESPACE Motion\nFUNCTION Two : INT\n    Two := 2;\nEND_FUNCTION\nEND_NAMESPACE\n\
+         PROGRAM Main\nUSING Motion;\nVAR x : INT; END_VAR\n    x := Two() + Motion.Two();\nEND_PROGRAM\n",
+    )
+    .expect("write");
+    let out_file = d.join("out.xml");
+    let (s, o) = (
+        src.to_string_lossy().into_owned(),
+        out_file.to_string_lossy().into_owned(),
+    );
+    let out = automat(&["export", &s, "-o", &o]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(
+        err.matches("error[E178]: a NAMESPACE (or a POU's USING) has no place in TC6 2.01 XML")
+            .count(),
+        2,
+        "{err}"
+    );
+    assert!(err.contains("ns.st:1:1: error[E178]"), "{err}");
+    assert!(!out_file.exists());
+    let run = automat(&["run", &s, "--cycles", "1", "--print", "x"]);
+    assert_eq!(String::from_utf8_lossy(&run.stdout), "x = 4\n");
+}

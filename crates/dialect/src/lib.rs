@@ -317,6 +317,7 @@ pub fn check_sources(
     }
     if dialects.is_empty() {
         // XML files without a dialect: no rewrite applies.
+        diags.extend(automat_syntax::desugar_namespaces(&mut units, interner));
         diags.extend(automat_syntax::desugar_oop(&mut units, interner));
         let mut analysis = automat_sema::check(&units, interner);
         diags.append(&mut analysis.diagnostics);
@@ -326,6 +327,8 @@ pub fn check_sources(
         return (units, analysis);
     }
     drop_shadowed_library_pous(&mut units, &libs);
+    // The rewrites below see namespaces' items under their flat names.
+    diags.extend(automat_syntax::desugar_namespaces(&mut units, interner));
     let is_user = |u: &SourceUnit| !libs.contains(&u.file);
     let mut marks = Vec::new();
     for unit in units.iter().filter(|u| is_user(u) && (isagraf || pl7)) {

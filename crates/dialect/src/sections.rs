@@ -190,5 +190,6 @@ fn item_start(i: &Item) -> u32 {
         Item::Config(c) => c.span.start,
         Item::Class(c) => c.span.start,
         Item::Interface(i) => i.span.start,
+        Item::Namespace(n) => n.span.start,
     }
 }

@@ -45,7 +45,7 @@ pub fn rewrite(unit: &mut SourceUnit, interner: &mut Interner, diags: &mut Vec<D
             Item::Config(c) => rewrite_config(c, timer, interner),
             // Dialect rewrites run before the object-orientation desugaring
             // and leave classes alone.
-            Item::Class(_) | Item::Interface(_) => {}
+            Item::Class(_) | Item::Interface(_) | Item::Namespace(_) => {}
             Item::Types(t) => {
                 for d in &mut t.decls {
                     reject_nested(&mut d.spec, timer, interner, diags);

@@ -428,6 +428,10 @@ pub fn export(
                         ex.text(i.name.span)
                     ),
                 ),
+                Item::Namespace(n) => ex.err(
+                    n.span,
+                    "a NAMESPACE (or a POU's USING) has no place in TC6 2.01 XML",
+                ),
                 Item::Globals(g) => ex.err(
                     g.span,
                     "a VAR_GLOBAL outside a CONFIGURATION has no place in TC6 XML: declare it in a configuration",

@@ -145,6 +145,7 @@ pub fn check_sources(sources: &SourceMap, interner: &mut Interner) -> (Vec<Sourc
         units.push(parsed.unit);
         diags.extend(parsed.diagnostics);
     }
+    diags.extend(automat_syntax::desugar_namespaces(&mut units, interner));
     diags.extend(automat_syntax::desugar_oop(&mut units, interner));
     let mut analysis = check(&units, interner);
     diags.append(&mut analysis.diagnostics);

@@ -7,7 +7,8 @@
 //! about a third of the typed length (at least one edit, at most three),
 //! so `x` does not suggest `y` while `MotorRuning` suggests
 //! `MotorRunning`; among equally near names the one listed first wins, so
-//! callers list the nearest scope first.
+//! callers list the nearest scope first. A namespace's item written
+//! without its namespace (`Clamp` for `Motion.Clamp`) is the nearest.
 
 /// The nearest of `candidates` to `typed`, if near enough.
 pub fn nearest<'a>(typed: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
@@ -18,7 +19,17 @@ pub fn nearest<'a>(typed: &str, candidates: impl IntoIterator<Item = &'a str>) -
         if c.eq_ignore_ascii_case(typed) || c.starts_with("__") {
             continue;
         }
-        let Some(d) = distance(&t, &c.to_ascii_lowercase(), limit) else {
+        // An item of a namespace (`Motion.Clamp`, from
+        // `desugar_namespaces`) named without its namespace: the nearest.
+        let unqualified = c
+            .rsplit_once('.')
+            .is_some_and(|(_, last)| last.eq_ignore_ascii_case(typed));
+        let d = if unqualified {
+            Some(0)
+        } else {
+            distance(&t, &c.to_ascii_lowercase(), limit)
+        };
+        let Some(d) = d else {
             continue;
         };
         if best.is_none_or(|(bd, _)| d < bd) {
@@ -92,5 +103,10 @@ mod tests {
         assert_eq!(did_you_mean("zzz", ["lamp"]), "");
         // Generated names never.
         assert_eq!(nearest("__sfc1", ["__sfc"]), None);
+        // A namespace's item named without its namespace.
+        assert_eq!(
+            nearest("clamp", ["Clump", "Motion.Clamp"]),
+            Some("Motion.Clamp")
+        );
     }
 }

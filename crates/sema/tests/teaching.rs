@@ -49,6 +49,30 @@ fn unknown_names_suggest_the_nearest_visible_one() {
 }
 
 #[test]
+fn a_namespace_item_named_without_its_namespace_is_suggested_qualified() {
+    // The namespace is opened in two files; its items are one set.
+    let (_, _, a) = common::analyze_files(&[
+        (
+            "a.st",
+            "NAMESPACE Motion\nTYPE Axis : STRUCT pos : INT; END_STRUCT; END_TYPE\nEND_NAMESPACE\n",
+        ),
+        (
+            "b.st",
+            "NAMESPACE Motion\nFUNCTION Clamp : INT\nVAR_INPUT a : Axis; END_VAR\n    Clamp := a.pos;\nEND_FUNCTION\nEND_NAMESPACE\n\
+             PROGRAM Main\nVAR x : INT; a : Axis; b : Motion.Axis; END_VAR\n    x := Clamp(b) + Motion.Clamp(b);\nEND_PROGRAM\n",
+        ),
+    ]);
+    let m: Vec<&str> = a.diagnostics.iter().map(|d| d.message.as_str()).collect();
+    assert_eq!(
+        m,
+        [
+            "unknown type `Axis`; did you mean `Motion.Axis`?",
+            "unknown function or function block `Clamp`; did you mean `Motion.Clamp`?"
+        ]
+    );
+}
+
+#[test]
 fn a_global_without_var_external_says_how_to_use_it() {
     let src = "VAR_GLOBAL Level : INT; END_VAR
 PROGRAM Main

@@ -35,6 +35,7 @@ mod parser;
 use automat_base::{Code, Diagnostic, FileId, Interner, Span};
 
 pub use desugar::il::LABEL_CR_VAR;
+pub use desugar::namespace::desugar_namespaces;
 pub use desugar::oop::desugar_oop;
 pub use desugar::sfc::desugar_chart;
 pub use parser::MAX_DEPTH;

@@ -174,7 +174,7 @@ fn written_pou(item: &Item, interner: &Interner) -> Option<(String, Span)> {
         Item::Pou(p) => (p.name, p.span),
         Item::Class(c) => (c.name, c.span),
         Item::Interface(i) => (i.name, i.span),
-        Item::Types(_) | Item::Globals(_) | Item::Config(_) => return None,
+        Item::Types(_) | Item::Globals(_) | Item::Config(_) | Item::Namespace(_) => return None,
     };
     let text = interner.name(name.sym);
     (!text.starts_with("__")).then(|| (text.to_string(), span))

@@ -31,6 +31,8 @@ impl<'a> Builder<'a> {
                     Item::Config(c) => self.add_config(c),
                     // Replaced by plain items (`automat_syntax::desugar_oop`).
                     Item::Class(_) | Item::Interface(_) => {}
+                    // Replaced by its items (`automat_syntax::desugar_namespaces`).
+                    Item::Namespace(_) => {}
                 }
             }
         }

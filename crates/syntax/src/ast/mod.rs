@@ -55,4 +55,28 @@ pub enum Item {
     Class(Box<oop::Class>),
     /// An INTERFACE; `desugar_oop` replaces it by plain items.
     Interface(Box<oop::Interface>),
+    /// `NAMESPACE name ... END_NAMESPACE`, or the USING clauses of one POU
+    /// (a namespace without a name holding that POU);
+    /// `desugar_namespaces` moves its items out, renamed, and leaves it
+    /// empty (for export, which refuses it).
+    Namespace(Box<Namespace>),
+}
+
+/// `NAMESPACE [INTERNAL] A.B USING X; ... END_NAMESPACE` (IEC 61131-3 3rd
+/// edition, 6.9). `name` is empty for the USING clauses of a POU outside
+/// any namespace: they apply to its one item.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Namespace {
+    pub name: Vec<Ident>,
+    pub internal: bool,
+    pub usings: Vec<Using>,
+    pub items: Vec<Item>,
+    pub span: Span,
+}
+
+/// `USING A.B;`: the names of namespace `A.B` visible unqualified.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Using {
+    pub path: Vec<Ident>,
+    pub span: Span,
 }

@@ -32,5 +32,6 @@
 
 pub(crate) mod eno;
 pub(crate) mod il;
+pub(crate) mod namespace;
 pub(crate) mod oop;
 pub(crate) mod sfc;

@@ -45,7 +45,7 @@ impl Remap<'_> {
             Item::Globals(b) => self.block(b),
             Item::Config(c) => self.config(c),
             // The graphical front ends generate no object-oriented items.
-            Item::Class(_) | Item::Interface(_) => {}
+            Item::Class(_) | Item::Interface(_) | Item::Namespace(_) => {}
         }
     }
 

@@ -228,7 +228,10 @@ impl Parser<'_> {
             None
         };
         self.expect(Tok::Colon, "after the program instance name");
-        let ty: Option<Ident> = self.expect_ident("the program type");
+        let ty: Option<Ident> = self.qualified_ident_here();
+        if ty.is_none() {
+            self.expected("the program type");
+        }
         let conns = if self.eat(Tok::LParen) {
             self.call_args()
         } else {

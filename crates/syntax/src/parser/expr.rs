@@ -299,6 +299,13 @@ impl Parser<'_> {
                 span,
             );
         }
+        if let Tok::Lit(i) = t.tok {
+            if let Some(lit) = self.qualified_enum(&base, i) {
+                self.bump();
+                let span = base.span.to(self.tok_span(t));
+                return mk(ExprKind::Literal(Box::new(lit)), span);
+            }
+        }
         let text = self.text(t);
         let partial = match t.tok {
             Tok::Lit(_) if text.bytes().all(|b| b.is_ascii_digit()) => match text.parse::<u32>() {

@@ -22,14 +22,28 @@ impl Parser<'_> {
     }
 
     pub(super) fn items(&mut self) -> Vec<Item> {
+        self.items_in(false)
+    }
+
+    /// The items of a file, or (`nested`) of a namespace, up to its
+    /// `END_NAMESPACE` (not consumed).
+    pub(super) fn items_in(&mut self, nested: bool) -> Vec<Item> {
         let mut items = Vec::new();
         loop {
             let before = self.pos;
             match self.peek() {
                 Tok::Eof => break,
+                Tok::Ident(_) if nested && self.is_word("END_NAMESPACE") => break,
+                Tok::Ident(_)
+                    if self.is_word("NAMESPACE") && matches!(self.nth(1), Tok::Ident(_)) =>
+                {
+                    if let Some(n) = self.namespace() {
+                        items.push(n);
+                    }
+                }
                 Tok::Kw(Kw::Program | Kw::Function | Kw::FunctionBlock) => {
                     if let Some(item) = self.pou() {
-                        items.push(item);
+                        items.push(self.with_pou_usings(item));
                     }
                 }
                 Tok::Kw(Kw::Action) => self.pou_action(&mut items),
@@ -55,7 +69,7 @@ impl Parser<'_> {
                 _ => {
                     self.expected("`PROGRAM`, `FUNCTION`, `FUNCTION_BLOCK`, `TYPE`, `VAR_GLOBAL` or `CONFIGURATION`");
                     self.bump();
-                    while !(self.at_item_start() || self.at_eof()) {
+                    while !(self.at_item_start() || self.at_eof() || self.at_namespace_word()) {
                         self.bump();
                     }
                 }
@@ -197,6 +211,7 @@ impl Parser<'_> {
         } else {
             None
         };
+        self.pou_usings = self.usings();
         let mut var_blocks = Vec::new();
         while let Tok::Kw(k) = self.peek() {
             match k {

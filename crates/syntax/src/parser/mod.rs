@@ -24,6 +24,7 @@ mod expr;
 mod il;
 mod init;
 mod items;
+mod namespace;
 mod oop;
 mod sfc;
 mod stmt;
@@ -68,6 +69,9 @@ pub struct Parser<'a> {
     /// that `R ctr` and `S ff` set those inputs as the other FB input
     /// operators do, instead of resetting the instance itself.
     il_fb_r: Vec<automat_base::Symbol>,
+    /// The `USING` clauses read in the current POU's header (`namespace.rs`
+    /// wraps the POU in a namespace without a name for them).
+    pou_usings: Vec<crate::ast::Using>,
     il_fb_s: Vec<automat_base::Symbol>,
     /// The dialect's reading rules (`--lib codesys`).
     opts: crate::Options,
@@ -98,6 +102,7 @@ pub fn parse_tokens(
         frames: Vec::new(),
         lex_error_ends: diags.iter().map(|d| d.span.end).collect(),
         oop_depth: 0,
+        pou_usings: Vec::new(),
         pou_actions: Vec::new(),
         il_fb_r: Vec::new(),
         il_fb_s: Vec::new(),

@@ -99,7 +99,10 @@ impl Parser<'_> {
     pub(super) fn fb_head_after_name(&mut self, head: &mut FbHead) {
         if self.eat_word("EXTENDS") {
             head.any = true;
-            head.extends = self.expect_ident("the name of the base after `EXTENDS`");
+            head.extends = self.qualified_ident_here();
+            if head.extends.is_none() {
+                self.expected("the name of the base after `EXTENDS`");
+            }
         }
         if self.eat_word("IMPLEMENTS") {
             head.any = true;
@@ -125,7 +128,8 @@ impl Parser<'_> {
                 }
                 continue;
             }
-            let Some(i) = self.expect_ident(what) else {
+            let Some(i) = self.qualified_ident_here() else {
+                self.expected(what);
                 break;
             };
             out.push(i);

@@ -73,7 +73,7 @@ impl Parser<'_> {
             }
             Tok::LParen => Some(self.enum_type(None, start)),
             _ => {
-                let Some(name) = self.ident_here() else {
+                let Some(name) = self.qualified_ident_here() else {
                     self.expected("a type");
                     return None;
                 };

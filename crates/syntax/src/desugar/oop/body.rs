@@ -381,6 +381,14 @@ impl<'a> Oop<'a> {
         }
     }
 
+    /// The namespace part of a qualified name (`Motion` of `Motion.Axis`);
+    /// empty for a name of the global namespace.
+    fn namespace_of(&self, name: Symbol) -> String {
+        let text = self.name(name);
+        text.rsplit_once('.')
+            .map_or(String::new(), |(ns, _)| ns.to_ascii_uppercase())
+    }
+
     pub(super) fn check_access(
         &mut self,
         owner_seen: Symbol,
@@ -400,7 +408,13 @@ impl<'a> Oop<'a> {
             })
             .unwrap_or(owner_seen);
         let ok = match vis {
-            Visibility::Public | Visibility::Internal => true,
+            Visibility::Public => true,
+            // Names in a namespace are qualified (`desugar_namespaces`):
+            // the same namespace is the same text before the last dot.
+            Visibility::Internal => {
+                let site = cx.pou.or(cx.defined_in);
+                site.is_some_and(|s| self.namespace_of(s) == self.namespace_of(owner))
+            }
             Visibility::Private => cx.defined_in == Some(owner),
             Visibility::Protected => cx.defined_in.is_some_and(|k| self.derives_from(k, owner)),
         };
@@ -408,6 +422,7 @@ impl<'a> Oop<'a> {
             let (n, o) = (self.name(name.sym), self.name(owner));
             let v = match vis {
                 Visibility::Private => "PRIVATE",
+                Visibility::Internal => "INTERNAL",
                 _ => "PROTECTED",
             };
             self.err(Code::E207, name.span, format!("`{n}` is {v} in `{o}`"));

@@ -69,6 +69,7 @@ impl<'a> Oop<'a> {
             in_method: false,
             locals,
             result: None,
+            pou: Some(p.name.sym),
         };
         for b in &mut p.var_blocks {
             self.retype_block(b);

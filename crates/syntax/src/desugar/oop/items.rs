@@ -33,6 +33,7 @@ impl<'a> Oop<'a> {
             in_method: false,
             locals: members.clone(),
             result: None,
+            pou: None,
         };
         self.stmts(&mut body, &cx);
         out.push(Item::Pou(Pou {
@@ -232,6 +233,7 @@ impl<'a> Oop<'a> {
             in_method: true,
             locals,
             result: meth.return_type.as_ref().map(|_| (meth.name.sym, fname)),
+            pou: None,
         };
         let mut body = meth.body.clone();
         self.stmts(&mut body, &cx);

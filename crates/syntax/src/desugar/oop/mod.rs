@@ -136,6 +136,8 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
                 }
                 Item::Class(c) => c.desugared = true,
                 Item::Interface(i) => i.desugared = true,
+                // Flattened before (`desugar_namespaces`).
+                Item::Namespace(_) => {}
             }
         }
     }
@@ -311,7 +313,7 @@ fn collect_names(
                         }
                     }
                 }
-                Item::Class(_) | Item::Interface(_) => {}
+                Item::Class(_) | Item::Interface(_) | Item::Namespace(_) => {}
             }
         }
     }
@@ -343,6 +345,9 @@ struct Ctx {
     locals: HashMap<Symbol, TypeSpec>,
     /// The method's (or GET's) own name and the function it became.
     result: Option<(Symbol, Symbol)>,
+    /// In a plain POU's body: its name (INTERNAL members are visible in
+    /// the namespace of `pou` or else of `defined_in`).
+    pou: Option<Symbol>,
 }
 
 struct Oop<'a> {
