@@ -64,6 +64,8 @@ impl Monotonic for SystemClock {
 /// scan (scan time, watchdog), so it is one `clock_gettime` with integer
 /// arithmetic rather than `Instant` and `Duration` (u128 nanoseconds).
 #[cfg(unix)]
+// `time_t` and `c_long` are i64 here but i32 on 32-bit targets.
+#[allow(clippy::useless_conversion)]
 pub fn monotonic_ns() -> i64 {
     let mut ts = libc::timespec {
         tv_sec: 0,
@@ -72,9 +74,9 @@ pub fn monotonic_ns() -> i64 {
     // SAFETY: `ts` is a valid, writable timespec; CLOCK_MONOTONIC exists
     // on every unix this builds for, so the call cannot fail.
     unsafe { libc::clock_gettime(libc::CLOCK_MONOTONIC, &mut ts) };
-    (ts.tv_sec as i64)
+    i64::from(ts.tv_sec)
         .saturating_mul(1_000_000_000)
-        .saturating_add(ts.tv_nsec as i64)
+        .saturating_add(i64::from(ts.tv_nsec))
 }
 
 /// The monotonic clock in ns from the first call.
