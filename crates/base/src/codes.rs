@@ -257,6 +257,8 @@ codes! {
         "A `name`, `typeName`, `instanceName`, `label` or a variable of a contact or coil is not an IEC 61131-3 identifier (letters, digits and underscores, not starting with a digit).";
     E178 => "not expressible in PLCopen XML",
         "`automat export` met a construct TC6 XML has no place for: a VAR_GLOBAL outside a CONFIGURATION, VAR_ACCESS or VAR_CONFIG, connections of a program instance, an `ARRAY [*]`, an R_EDGE/F_EDGE input, a vendor dialect, a class, interface or NAMESPACE (and a POU's USING). Move it into a form the format has (globals into a configuration) or leave the project in ST.";
+    E179 => "macro-step body without one exit step",
+        "A PLCopen `macroStep` is left when its body's exit step is active, and TC6 2.01 does not mark that step: automat takes the one step of the body that no transition of the body leaves. A body where every step is left by a transition, or where several are left by none, has no exit step: end the body with one step without an outgoing transition.";
     E180 => "invalid operand",
         "Festo FST dialect: the operand cannot be written by this instruction: inputs (`In.m`, `IWn`) are read-only (FST's \"invalid operand, I0.0\"), SET/RESET/SHIFT take a bit operand, INC/DEC a word, and a LOAD's destinations must have the type of what it loaded.";
     E181 => "SET or RESET missing",

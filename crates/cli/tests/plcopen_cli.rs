@@ -228,3 +228,30 @@ fn export_refuses_namespaces() {
     let run = automat(&["run", &s, "--cycles", "1", "--print", "x"]);
     assert_eq!(String::from_utf8_lossy(&run.stdout), "x = 4\n");
 }
+
+/// `automat draw` of a chart with a macro-step (the conformance case
+/// `plcopen_macrostep`): the chart as drawn in the file, the macro-step as
+/// its box with the two bars (its body is a chart of its own, not drawn
+/// inside it).
+#[test]
+fn draw_a_chart_with_a_macro_step() {
+    let case =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/conformance/plcopen_macrostep.xml");
+    let d = dir("draw-macro");
+    let svg = d.join("chart.svg");
+    let c = case.to_string_lossy().into_owned();
+    let o = automat(&["draw", &c, "--pou", "Chart", "-o", &svg.to_string_lossy()]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let text = std::fs::read_to_string(&svg).unwrap_or_default();
+    assert!(text.starts_with("<svg "), "{text}");
+    assert_eq!(text.matches("class=\"macro-step\"").count(), 3, "{text}");
+    assert_eq!(text.matches("class=\"initial-step\"").count(), 2, "{text}");
+    assert_eq!(text.matches("class=\"text-step\"").count(), 2, "{text}");
+    assert_eq!(text.matches("class=\"transition\"").count(), 4, "{text}");
+    assert!(text.contains(">M<") && text.contains(">S0<"), "{text}");
+}

@@ -27,6 +27,7 @@ mod config;
 mod decl;
 mod export;
 mod graph;
+mod macros;
 mod names;
 mod pou;
 mod sfc;
@@ -61,9 +62,13 @@ pub fn generated_st(file: FileId, src: &str) -> (String, Vec<Diagnostic>) {
 /// diagnostics next to the tree of what could be read.
 pub fn import(file: FileId, src: &str, interner: &mut Interner) -> Parsed {
     let imp = generate(file, src);
-    let Imp { out, diags, .. } = imp;
+    let Imp {
+        out, diags, macros, ..
+    } = imp;
     let opts = automat_syntax::Options::default();
-    automat_syntax::graphic::parse_generated(file, &out, diags, interner, opts)
+    let mut parsed = automat_syntax::graphic::parse_generated(file, &out, diags, interner, opts);
+    macros::attach(&mut parsed, &macros, interner);
+    parsed
 }
 
 fn generate<'s>(file: FileId, src: &'s str) -> Imp<'s> {
@@ -72,6 +77,7 @@ fn generate<'s>(file: FileId, src: &'s str) -> Imp<'s> {
         src,
         out: Out::default(),
         diags: Vec::new(),
+        macros: Vec::new(),
     };
     let opts = ParsingOptions {
         allow_dtd: false,
@@ -114,6 +120,8 @@ pub(crate) struct Imp<'s> {
     pub src: &'s str,
     pub out: Out,
     pub diags: Vec<Diagnostic>,
+    /// Macro-steps whose bodies were written as hidden blocks (`macros.rs`).
+    pub macros: Vec<macros::Link>,
 }
 
 impl<'s> Imp<'s> {

@@ -75,10 +75,11 @@ impl Imp<'_> {
         let sfc = xml::child(p, "body")
             .and_then(|b| xml::child(b, "SFC"))
             .is_some();
+        let mut macros = Vec::new();
         match xml::child(p, "body") {
             Some(body) if sfc => {
                 if let Some(chart) = xml::child(body, "SFC") {
-                    self.sfc(chart, p, &pou_name);
+                    macros = self.sfc(chart, p, &pou_name);
                 }
             }
             Some(body) => self.body(body, &mut ctx),
@@ -102,6 +103,7 @@ impl Imp<'_> {
         self.gen("\nEND_", p);
         self.gen(kw, p);
         self.gen("\n", p);
+        self.macro_bodies(macros, p, &pou_name);
     }
 
     /// A `<body>`: ST and IL copied as written, LD and FBD lowered.

@@ -52,7 +52,77 @@ fn without_semicolon(t: &Text) -> Text {
 }
 
 impl Imp<'_> {
-    pub fn sfc(&mut self, body: Node, pou: Node, pou_name: &str) {
+    /// The chart of a POU: its elements, the POU's actions, then the inline
+    /// actions of its action blocks. Returns the macro-steps met, whose
+    /// bodies `pou.rs` writes after the POU (see `macros.rs`).
+    pub fn sfc<'a, 'i>(
+        &mut self,
+        body: Node<'a, 'i>,
+        pou: Node<'a, 'i>,
+        pou_name: &str,
+    ) -> Vec<Node<'a, 'i>> {
+        let (actions, macros) = self.sfc_elements(body, pou, pou_name);
+        if let Some(acts) = xml::child(pou, "actions") {
+            for a in xml::children(acts, "action") {
+                let Some(name) = self.name_attr(a, "name", "an action's name") else {
+                    continue;
+                };
+                let Some(lang) = xml::child(a, "body").and_then(|b| {
+                    xml::elements(b).find(|l| matches!(l.tag_name().name(), "ST" | "IL"))
+                }) else {
+                    let sp = self.span(a);
+                    self.error(
+                        Code::E171,
+                        sp,
+                        format!(
+                            "action `{}`: only ST and IL action bodies are supported",
+                            name.text
+                        ),
+                    );
+                    continue;
+                };
+                self.gen("\nACTION ", a);
+                self.out.copy(&name);
+                self.gen(":\n", a);
+                let t = xml::formatted(self.src, lang);
+                self.out.copy(&t);
+                self.gen("\nEND_ACTION\n", a);
+            }
+        }
+        self.inline_actions(actions);
+        macros
+    }
+
+    /// Inline action bodies as the chart's ACTIONs.
+    fn inline_actions(&mut self, actions: Vec<(String, Text, Node)>) {
+        for (name, text, at) in actions {
+            self.gen(&format!("\nACTION {name}:\n"), at);
+            self.out.copy(&text);
+            self.gen("\nEND_ACTION\n", at);
+        }
+    }
+
+    /// The body of a macro-step (its `SFC`): elements and inline actions.
+    pub fn macro_chart<'a, 'i>(
+        &mut self,
+        body: Node<'a, 'i>,
+        pou: Node<'a, 'i>,
+        pou_name: &str,
+    ) -> Vec<Node<'a, 'i>> {
+        let (actions, macros) = self.sfc_elements(body, pou, pou_name);
+        self.inline_actions(actions);
+        macros
+    }
+
+    /// Steps, macro-steps and transitions of one chart (a POU's or a
+    /// macro-step's body), with the inline actions and macro-steps found.
+    #[allow(clippy::type_complexity)]
+    fn sfc_elements<'a, 'i>(
+        &mut self,
+        body: Node<'a, 'i>,
+        pou: Node<'a, 'i>,
+        pou_name: &str,
+    ) -> (Vec<(String, Text, Node<'a, 'i>)>, Vec<Node<'a, 'i>>) {
         let mut w = Wires {
             by_id: HashMap::new(),
             readers: HashMap::new(),
@@ -72,10 +142,20 @@ impl Imp<'_> {
             }
         }
         let mut actions: Vec<(String, Text, Node)> = Vec::new();
+        let mut macros = Vec::new();
         self.gen("\n", body);
         for e in xml::elements(body) {
             match e.tag_name().name() {
-                "step" => self.step(e, &w, pou_name, &mut actions),
+                "step" => {
+                    self.step(e, &w, pou_name, &mut actions);
+                }
+                // A step here; its body becomes `Step::macro_body` after
+                // parsing (`macros.rs`).
+                "macroStep" => {
+                    if self.step(e, &w, pou_name, &mut actions) {
+                        macros.push(e);
+                    }
+                }
                 "transition" => self.transition(e, &w, pou, pou_name),
                 "selectionDivergence"
                 | "selectionConvergence"
@@ -106,49 +186,20 @@ impl Imp<'_> {
                 }
             }
         }
-        if let Some(acts) = xml::child(pou, "actions") {
-            for a in xml::children(acts, "action") {
-                let Some(name) = self.name_attr(a, "name", "an action's name") else {
-                    continue;
-                };
-                let Some(lang) = xml::child(a, "body").and_then(|b| {
-                    xml::elements(b).find(|l| matches!(l.tag_name().name(), "ST" | "IL"))
-                }) else {
-                    let sp = self.span(a);
-                    self.error(
-                        Code::E171,
-                        sp,
-                        format!(
-                            "action `{}`: only ST and IL action bodies are supported",
-                            name.text
-                        ),
-                    );
-                    continue;
-                };
-                self.gen("\nACTION ", a);
-                self.out.copy(&name);
-                self.gen(":\n", a);
-                let t = xml::formatted(self.src, lang);
-                self.out.copy(&t);
-                self.gen("\nEND_ACTION\n", a);
-            }
-        }
-        for (name, text, at) in actions {
-            self.gen(&format!("\nACTION {name}:\n"), at);
-            self.out.copy(&text);
-            self.gen("\nEND_ACTION\n", at);
-        }
+        (actions, macros)
     }
 
+    /// A step or macro-step with the associations of its action blocks;
+    /// false when it has no usable name (nothing written).
     fn step<'a, 'i>(
         &mut self,
         e: Node<'a, 'i>,
         w: &Wires<'a, 'i>,
         pou_name: &str,
         actions: &mut Vec<(String, Text, Node<'a, 'i>)>,
-    ) {
+    ) -> bool {
         let Some(name) = self.name_attr(e, "name", "a step's name") else {
-            return;
+            return false;
         };
         self.gen(
             if xml::flag(e, "initialStep") {
@@ -209,6 +260,7 @@ impl Imp<'_> {
             }
         }
         self.gen("END_STEP\n", e);
+        true
     }
 
     /// Steps before a transition (through selection divergences and
@@ -220,7 +272,7 @@ impl Imp<'_> {
         seen.push(id);
         let Some(&e) = w.by_id.get(&id) else { return };
         match e.tag_name().name() {
-            "step" => out.extend(xml::attr(self.src, e, "name").map(|t| t.trimmed())),
+            "step" | "macroStep" => out.extend(xml::attr(self.src, e, "name").map(|t| t.trimmed())),
             "selectionDivergence" | "simultaneousConvergence" => {
                 for s in sources(e) {
                     self.back(s, w, seen, out);
@@ -240,7 +292,9 @@ impl Imp<'_> {
             seen.push(*r);
             let Some(&e) = w.by_id.get(r) else { continue };
             match e.tag_name().name() {
-                "step" => out.extend(xml::attr(self.src, e, "name").map(|t| t.trimmed())),
+                "step" | "macroStep" => {
+                    out.extend(xml::attr(self.src, e, "name").map(|t| t.trimmed()))
+                }
                 "jumpStep" => out.extend(xml::attr(self.src, e, "targetName").map(|t| t.trimmed())),
                 "simultaneousDivergence" | "selectionConvergence" => self.forward(*r, w, seen, out),
                 _ => {}

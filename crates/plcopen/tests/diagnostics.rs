@@ -287,6 +287,62 @@ fn wired_sfc_conditions() {
     );
 }
 
+/// A program `P` whose chart is S0 to the macro-step M and back, M's body
+/// being `body` (the macro-step is on line 6, column 1).
+fn macro_chart(body: &str) -> String {
+    format!(
+        "{HEAD}<pou name=\"P\" pouType=\"program\"><interface><localVars>{BOOLS}</localVars></interface>\n<body><SFC>\n<step localId=\"1\" name=\"S0\" initialStep=\"true\"><connectionPointIn><connection refLocalId=\"4\"/></connectionPointIn></step><transition localId=\"2\"><connectionPointIn><connection refLocalId=\"1\"/></connectionPointIn><condition><inline><ST>a</ST></inline></condition></transition>\n<macroStep localId=\"3\" name=\"M\"><connectionPointIn><connection refLocalId=\"2\"/></connectionPointIn>{body}</macroStep>\n<transition localId=\"4\"><connectionPointIn><connection refLocalId=\"3\"/></connectionPointIn><condition><inline><ST>q</ST></inline></condition></transition>\n</SFC></body></pou>{TAIL}"
+    )
+}
+
+/// The exit step of a macro-step's body is the one step no transition of
+/// the body leaves (docs/plcopen.md): none or several is E179 at the
+/// macro-step, naming its localId and POU.
+#[test]
+fn macro_step_exit_rule() {
+    const B1: &str = r#"<step localId="31" name="B1" initialStep="true"/>"#;
+    const T1: &str = r#"<transition localId="32"><connectionPointIn><connection refLocalId="31"/></connectionPointIn><condition><inline><ST>a</ST></inline></condition></transition>"#;
+    let ok = format!(
+        r#"<body><SFC>{B1}{T1}<step localId="33" name="B2"><connectionPointIn><connection refLocalId="32"/></connectionPointIn></step></SFC></body>"#
+    );
+    expect(&macro_chart(&ok), &[]);
+    // B2 and B3 both end the body.
+    let two = format!(
+        r#"<body><SFC>{B1}{T1}<step localId="33" name="B2"><connectionPointIn><connection refLocalId="32"/></connectionPointIn></step><step localId="34" name="B3"/></SFC></body>"#
+    );
+    expect(
+        &macro_chart(&two),
+        &["6:1: error[E179]: POU `P`, localId 3: macro-step `M` has no exit step: 2 steps of its body are left by no transition (`B2`, `B3`)"],
+    );
+    // B1 and B2 loop: every step is left.
+    let none = format!(
+        r#"<body><SFC>{B1}{T1}<step localId="33" name="B2"><connectionPointIn><connection refLocalId="32"/></connectionPointIn></step><transition localId="35"><connectionPointIn><connection refLocalId="33"/></connectionPointIn><condition><inline><ST>q</ST></inline></condition></transition><jumpStep localId="36" targetName="B1"><connectionPointIn><connection refLocalId="35"/></connectionPointIn></jumpStep></SFC></body>"#
+    );
+    expect(
+        &macro_chart(&none),
+        &["6:1: error[E179]: POU `P`, localId 3: macro-step `M` has no exit step: every step of its body is left by a transition"],
+    );
+    // No body at all.
+    expect(
+        &macro_chart(""),
+        &["6:1: error[E171]: POU `P`, localId 3: macro-step `M` has no SFC body"],
+    );
+    // The chart checks run once over the chart with its bodies: a body
+    // step named as a step of the chart is one E122, and a body without an
+    // initial step one E123/E124.
+    let clash = format!(
+        r#"<body><SFC>{B1}{T1}<step localId="33" name="S0"><connectionPointIn><connection refLocalId="32"/></connectionPointIn></step></SFC></body>"#
+    );
+    let report = check(&macro_chart(&clash));
+    assert_eq!(report.matches("error[E122]").count(), 1, "{report}");
+    let no_entry = format!(
+        r#"<body><SFC><step localId="31" name="B1"/>{T1}<step localId="33" name="B2"><connectionPointIn><connection refLocalId="32"/></connectionPointIn></step></SFC></body>"#
+    );
+    let report = check(&macro_chart(&no_entry));
+    assert_eq!(heads(&report).len(), 1, "{report}");
+    assert!(report.contains("error[E12"), "{report}");
+}
+
 #[test]
 fn st_body_errors_keep_their_position() {
     let t = format!(

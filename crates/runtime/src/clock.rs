@@ -6,7 +6,7 @@
 //! to sleep until absolute deadlines (start + due instant), so sleeping
 //! never accumulates drift.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// How the scan loop paces scans.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -25,16 +25,16 @@ pub trait Monotonic {
     fn sleep_until(&mut self, deadline_ns: i64);
 }
 
-/// The operating system's monotonic clock (`Instant`, CLOCK_MONOTONIC on
-/// Linux), counting from its creation.
+/// The operating system's monotonic clock (CLOCK_MONOTONIC on Linux, what
+/// `Instant` reads), counting from its creation.
 pub struct SystemClock {
-    origin: Instant,
+    origin_ns: i64,
 }
 
 impl SystemClock {
     pub fn new() -> SystemClock {
         SystemClock {
-            origin: Instant::now(),
+            origin_ns: monotonic_ns(),
         }
     }
 }
@@ -47,7 +47,7 @@ impl Default for SystemClock {
 
 impl Monotonic for SystemClock {
     fn now_ns(&mut self) -> i64 {
-        i64::try_from(self.origin.elapsed().as_nanos()).unwrap_or(i64::MAX)
+        monotonic_ns().saturating_sub(self.origin_ns)
     }
 
     fn sleep_until(&mut self, deadline_ns: i64) {
@@ -58,6 +58,35 @@ impl Monotonic for SystemClock {
             }
         }
     }
+}
+
+/// The monotonic clock in ns from its own origin. Read a few times per
+/// scan (scan time, watchdog), so it is one `clock_gettime` with integer
+/// arithmetic rather than `Instant` and `Duration` (u128 nanoseconds).
+#[cfg(unix)]
+// `time_t` and `c_long` are i64 here but i32 on 32-bit targets.
+#[allow(clippy::useless_conversion)]
+pub fn monotonic_ns() -> i64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `ts` is a valid, writable timespec; CLOCK_MONOTONIC exists
+    // on every unix this builds for, so the call cannot fail.
+    unsafe { libc::clock_gettime(libc::CLOCK_MONOTONIC, &mut ts) };
+    i64::from(ts.tv_sec)
+        .saturating_mul(1_000_000_000)
+        .saturating_add(i64::from(ts.tv_nsec))
+}
+
+/// The monotonic clock in ns from the first call.
+#[cfg(not(unix))]
+pub fn monotonic_ns() -> i64 {
+    use std::sync::OnceLock;
+    use std::time::Instant;
+    static ORIGIN: OnceLock<Instant> = OnceLock::new();
+    let origin = *ORIGIN.get_or_init(Instant::now);
+    i64::try_from(origin.elapsed().as_nanos()).unwrap_or(i64::MAX)
 }
 
 #[cfg(test)]

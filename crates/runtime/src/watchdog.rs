@@ -16,10 +16,11 @@
 //! This is wall time whatever the run's clock: the watchdog guards the
 //! machine running the PLC, not PLC time.
 
+use crate::clock::monotonic_ns;
 use automat_ir::{Interrupt, TaskWatchdog};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// How often an armed watchdog looks at the stop flag.
 pub const STOP_POLL_NS: u64 = 50_000_000;
@@ -43,12 +44,12 @@ pub enum Cause {
 #[derive(Default)]
 struct State {
     /// The run in progress: its raise deadline (`None`: no time limit,
-    /// only the stop flag is watched).
-    armed: Option<Option<Instant>>,
+    /// only the stop flag is watched). Times are [`monotonic_ns`].
+    armed: Option<Option<i64>>,
     /// When the thread wakes next; `None` while it waits for an arm.
-    sleeping_until: Option<Instant>,
+    sleeping_until: Option<i64>,
     /// When the thread first saw the stop flag during a run.
-    stop_seen: Option<Instant>,
+    stop_seen: Option<i64>,
     cause: Option<Cause>,
     quit: bool,
 }
@@ -72,7 +73,8 @@ impl Shared {
 /// The handle the scan loop holds; [`Watchdog::watch`] is the thread.
 pub struct Watchdog {
     shared: Arc<Shared>,
-    started: Option<Instant>,
+    /// When the armed run started ([`monotonic_ns`]).
+    started: Option<i64>,
 }
 
 impl Watchdog {
@@ -98,8 +100,8 @@ impl Watchdog {
     /// A task run starts now; raise the flag if it still runs after
     /// `limit_ns` (`None`: only a stop request can interrupt it).
     pub fn arm(&mut self, limit_ns: Option<i64>) {
-        let now = Instant::now();
-        let deadline = limit_ns.map(|ns| now + Duration::from_nanos(ns.max(0) as u64));
+        let now = monotonic_ns();
+        let deadline = limit_ns.map(|ns| now.saturating_add(ns.max(0)));
         let mut s = self.shared.lock();
         self.shared.interrupt.clear();
         s.cause = None;
@@ -123,9 +125,10 @@ impl Watchdog {
         s.armed = None;
         let cause = s.cause;
         drop(s);
-        let ns = self.started.take().map_or(0, |t| {
-            i64::try_from(t.elapsed().as_nanos()).unwrap_or(i64::MAX)
-        });
+        let ns = self
+            .started
+            .take()
+            .map_or(0, |t| monotonic_ns().saturating_sub(t).max(0));
         (ns, cause)
     }
 
@@ -163,11 +166,11 @@ fn watch(shared: &Shared, stop: &AtomicBool) {
             s = shared.wake.wait(s).unwrap_or_else(|p| p.into_inner());
             continue;
         };
-        let now = Instant::now();
+        let now = monotonic_ns();
         if stop.load(Ordering::Relaxed) && s.stop_seen.is_none() {
             s.stop_seen = Some(now);
         }
-        let stop_at = s.stop_seen.map(|t| t + Duration::from_nanos(STOP_GRACE_NS));
+        let stop_at = s.stop_seen.map(|t| t.saturating_add(STOP_GRACE_NS as i64));
         let cause = if stop_at.is_some_and(|t| now >= t) {
             Some(Cause::Stop)
         } else if deadline.is_some_and(|d| now >= d) {
@@ -181,12 +184,12 @@ fn watch(shared: &Shared, stop: &AtomicBool) {
             shared.interrupt.raise();
             continue;
         }
-        let mut until = now + Duration::from_nanos(STOP_POLL_NS);
+        let mut until = now.saturating_add(STOP_POLL_NS as i64);
         for t in [deadline, stop_at].into_iter().flatten() {
             until = until.min(t);
         }
         s.sleeping_until = Some(until);
-        let wait = until.saturating_duration_since(now);
+        let wait = Duration::from_nanos(u64::try_from(until.saturating_sub(now)).unwrap_or(0));
         s = shared
             .wake
             .wait_timeout(s, wait)

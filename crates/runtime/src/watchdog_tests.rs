@@ -8,6 +8,7 @@ use crate::scan::{run, Env, Limit, RunConfig, RunEnd};
 use crate::testutil::{inst, program, task, Fake, COUNT, SLEEP, SPIN};
 use crate::ClockMode;
 use automat_ir::{FaultKind, TaskWatchdog};
+use std::time::Instant;
 
 const MS: i64 = 1_000_000;
 

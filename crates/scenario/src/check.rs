@@ -852,10 +852,10 @@ impl<'a> Frame<'a> {
             counts: &[],
         }
     }
-    fn before(self) -> Frame<'a> {
+    fn before(&self) -> Frame<'a> {
         Frame {
             now: self.prev,
-            ..self
+            ..*self
         }
     }
 }
@@ -881,21 +881,30 @@ impl Cond {
     /// The value on the frame. Division by zero gives ±infinity or NaN (a
     /// comparison with NaN is FALSE); `MOD` by zero gives 0, as in IEC.
     pub fn eval(&self, f: Frame) -> Val {
+        self.value(&f)
+    }
+
+    pub fn truth(&self, f: Frame) -> bool {
+        self.holds(&f)
+    }
+
+    /// [`Cond::eval`] with the frame by reference: evaluated for several
+    /// expectations every scan, the tree walk should not copy the frame's
+    /// three slices at every node.
+    fn value(&self, f: &Frame) -> Val {
         match self {
             Cond::Ref(i) => f.now.get(*i).copied().unwrap_or(Val::B(false)),
             Cond::Bool(b) => Val::B(*b),
             Cond::Num(x) => Val::N(*x),
-            Cond::Not(x) => Val::B(!x.truth(f)),
-            Cond::Logic(op, a, b) => {
-                let (a, b) = (a.truth(f), b.truth(f));
-                Val::B(match op {
-                    LogicOp::And => a && b,
-                    LogicOp::Or => a || b,
-                    LogicOp::Xor => a != b,
-                })
-            }
+            Cond::Not(x) => Val::B(!x.holds(f)),
+            // Conditions have no side effects: AND and OR stop early.
+            Cond::Logic(op, a, b) => Val::B(match op {
+                LogicOp::And => a.holds(f) && b.holds(f),
+                LogicOp::Or => a.holds(f) || b.holds(f),
+                LogicOp::Xor => a.holds(f) != b.holds(f),
+            }),
             Cond::Cmp(op, a, b) => {
-                let (x, y) = (num(a.eval(f)), num(b.eval(f)));
+                let (x, y) = (num(a.value(f)), num(b.value(f)));
                 Val::B(match op {
                     CmpOp::Eq => x == y,
                     CmpOp::Ne => x != y,
@@ -906,7 +915,7 @@ impl Cond {
                 })
             }
             Cond::Arith(op, a, b) => {
-                let (x, y) = (num(a.eval(f)), num(b.eval(f)));
+                let (x, y) = (num(a.value(f)), num(b.value(f)));
                 Val::N(match op {
                     ArithOp::Add => x + y,
                     ArithOp::Sub => x - y,
@@ -916,20 +925,20 @@ impl Cond {
                     ArithOp::Mod => x % y,
                 })
             }
-            Cond::Neg(x) => Val::N(-num(x.eval(f))),
-            Cond::Abs(x) => Val::N(num(x.eval(f)).abs()),
-            Cond::Min(a, b) => Val::N(num(a.eval(f)).min(num(b.eval(f)))),
-            Cond::Max(a, b) => Val::N(num(a.eval(f)).max(num(b.eval(f)))),
-            Cond::Prev(x) => x.eval(f.before()),
-            Cond::Rise(x) => Val::B(x.truth(f) && !x.truth(f.before())),
-            Cond::Fall(x) => Val::B(!x.truth(f) && x.truth(f.before())),
-            Cond::Change(x) => Val::B(!same(x.eval(f), x.eval(f.before()))),
+            Cond::Neg(x) => Val::N(-num(x.value(f))),
+            Cond::Abs(x) => Val::N(num(x.value(f)).abs()),
+            Cond::Min(a, b) => Val::N(num(a.value(f)).min(num(b.value(f)))),
+            Cond::Max(a, b) => Val::N(num(a.value(f)).max(num(b.value(f)))),
+            Cond::Prev(x) => x.value(&f.before()),
+            Cond::Rise(x) => Val::B(x.holds(f) && !x.holds(&f.before())),
+            Cond::Fall(x) => Val::B(!x.holds(f) && x.holds(&f.before())),
+            Cond::Change(x) => Val::B(!same(x.value(f), x.value(&f.before()))),
             Cond::Count(i) => Val::N(f.counts.get(*i).copied().unwrap_or(0.0)),
         }
     }
 
-    pub fn truth(&self, f: Frame) -> bool {
-        match self.eval(f) {
+    fn holds(&self, f: &Frame) -> bool {
+        match self.value(f) {
             Val::B(b) => b,
             Val::N(x) => x != 0.0,
         }

@@ -119,6 +119,10 @@ struct Check {
     seen: bool,
     /// `stable`: the value the open windows hold to.
     reference: Val,
+    /// The first scan time at which [`judge`] can do anything but answer
+    /// `Open` (count, anchor, pass or fail): before it the check is
+    /// skipped, so a scan judges only the lines due.
+    wake_ns: i64,
 }
 
 /// A resolved `when` line.
@@ -263,8 +267,10 @@ fn check_of(scope: &Scope, e: &ast::Expect, refs: &mut Vec<Ref>) -> Result<Check
             e.text.get(from..to).unwrap_or("count").to_string()
         })
         .collect();
+    let wake_ns = wake_of(&win, !counts.is_empty());
     Ok(Check {
         win,
+        wake_ns,
         counters: vec![0.0; counts.len()],
         count_texts,
         counts,
@@ -277,6 +283,29 @@ fn check_of(scope: &Scope, e: &ast::Expect, refs: &mut Vec<Ref>) -> Result<Check
         seen: false,
         reference: Val::B(false),
     })
+}
+
+/// When a check starts to matter (see `Check::wake_ns`), from the cases of
+/// [`judge`]: a window's counters count from its start, an `at` line
+/// decides at its time, a `within`/`stable` after a time from that time;
+/// a check anchored on an event looks at every scan.
+fn wake_of(win: &Win, counts: bool) -> i64 {
+    match win {
+        Win::At(_) if counts => i64::MIN,
+        Win::At(at) => *at,
+        Win::Within {
+            after: Start::Time(after),
+            within,
+        } => after.saturating_add(1).min(after.saturating_add(*within)),
+        Win::Always { from, to } => (*from).min(to.unwrap_or(i64::MAX)),
+        Win::During { from, to } if counts => (*from).min(*to),
+        Win::During { to, .. } => *to,
+        Win::Stable {
+            after: Start::Time(a),
+            for_ns,
+        } => (*a).min(a.saturating_add(*for_ns)),
+        Win::Within { .. } | Win::Stable { .. } => i64::MIN,
+    }
 }
 
 /// The spans of the `count(...)` calls in `e`, left to right.
@@ -387,7 +416,7 @@ impl Judge {
         }
         for k in 0..self.checks.len() {
             let verdict = match self.checks.get_mut(k) {
-                Some(c) if !c.done => judge(c, now, &self.vals, &self.prev),
+                Some(c) if !c.done && now >= c.wake_ns => judge(c, now, &self.vals, &self.prev),
                 _ => continue,
             };
             match verdict {

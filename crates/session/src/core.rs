@@ -160,6 +160,11 @@ impl Core {
     }
 
     fn feed(&mut self) {
+        if self.subs.is_empty() {
+            // Nobody subscribed (`automat test`, a plain run): no snapshot
+            // lock and reference count per scan.
+            return;
+        }
         let snap = match self.shared.snapshot.lock() {
             Ok(s) => Arc::clone(&s),
             Err(p) => Arc::clone(&p.into_inner()),

@@ -181,9 +181,11 @@ impl<'a> Builder<'a> {
                 .map(|p| p.ast.name),
             _ => None,
         };
-        // Every call of a function or function block has the implicit EN
-        // and ENO; a variable of that name would be a second one, which a
-        // call never sets (the body would read FALSE, silently).
+        // Every call of a function or function block has the implicit EN; a
+        // variable of that name would be a second one, which a call never
+        // sets (the body would read FALSE, silently). A declared ENO output
+        // is the call's ENO (`desugar/eno.rs` declares one itself when the
+        // body assigns it), so only EN is refused.
         let implicit_en = match self.scopes.get(scope).map(|s| s.owner) {
             Some(Owner::Pou(id)) => self
                 .pous
@@ -194,18 +196,13 @@ impl<'a> Builder<'a> {
         for decl in &block.decls {
             let mut first = None;
             for &name in &decl.names {
-                if implicit_en && (name.sym == self.syms.en || name.sym == self.syms.eno) {
+                if implicit_en && name.sym == self.syms.en {
                     let n = self.name(name.sym);
-                    let what = if name.sym == self.syms.en {
-                        "enable input"
-                    } else {
-                        "enable output"
-                    };
                     self.emit(Diagnostic::error(
                         Code::E023,
                         name.span,
                         format!(
-                            "`{n}` is the implicit {what} of every call and is declared already: rename this variable"
+                            "`{n}` is the implicit enable input of every call and is declared already: rename this variable"
                         ),
                     ));
                     // Still declared, so its uses are not reported again.
