@@ -28,6 +28,7 @@
 
 mod body;
 mod decls;
+mod interfaces;
 mod items;
 mod rules;
 mod types;
