@@ -203,7 +203,26 @@ impl<'a> Oop<'a> {
         };
         let mut var_blocks = vec![this_block];
         let mut own_blocks = meth.var_blocks.clone();
-        let byref = self.split_poly_inouts(&mut own_blocks);
+        let mut byref = self.split_poly_inouts(&mut own_blocks);
+        // The class's VAR_IN_OUT of a base class, reached through `__THIS`.
+        let own_names = Self::locals_of(&own_blocks);
+        for kc in self.chain(c) {
+            for b in self.class(kc).map_or(&[][..], |x| &x.var_blocks[..]) {
+                if b.kind != VarKind::InOut {
+                    continue;
+                }
+                for d in &b.decls {
+                    if matches!(&d.ty, TypeSpec::Named(t) if self.poly.contains_key(&t.sym)) {
+                        byref.extend(
+                            d.names
+                                .iter()
+                                .map(|n| n.sym)
+                                .filter(|n| !own_names.contains_key(n)),
+                        );
+                    }
+                }
+            }
+        }
         var_blocks.extend(own_blocks.iter().cloned());
         // The class's VAR_EXTERNAL are the method's too (globals by name).
         let mut externals = Vec::new();

@@ -71,10 +71,28 @@ impl<'a> Oop<'a> {
                     _ => None,
                 }
             }
-            ExprKind::Name(id) if cx.byref.contains(&id.sym) => match self.type_of(e, cx) {
-                T::Itf(i) if self.poly_class.contains_key(&i) => Some((i, e.clone())),
-                _ => None,
-            },
+            ExprKind::Name(id) if cx.byref.contains(&id.sym) => {
+                // Declared `x : B` (a class's member, as written), `REF_TO B`
+                // (a split parameter) or already `__ITF_<B^>`.
+                let ty = cx
+                    .locals
+                    .get(&id.sym)
+                    .cloned()
+                    .or_else(|| cx.class.and_then(|c| self.class_var(c, id.sym)))?;
+                let i = match &ty {
+                    TypeSpec::Named(n) => self
+                        .poly
+                        .get(&n.sym)
+                        .or_else(|| self.itf_structs.get(&n.sym))
+                        .copied()?,
+                    TypeSpec::Ref { target, .. } => match &**target {
+                        TypeSpec::Named(n) => self.poly.get(&n.sym).copied()?,
+                        _ => return None,
+                    },
+                    _ => return None,
+                };
+                self.poly_class.contains_key(&i).then(|| (i, e.clone()))
+            }
             _ => None,
         }
     }
