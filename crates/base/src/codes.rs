@@ -314,6 +314,8 @@ codes! {
         "A `USING` names a namespace that no `NAMESPACE ... END_NAMESPACE` of the project declares (namespaces are named from the global one: `USING Plant.Motion;`, or relative to the enclosing namespace).";
     E216 => "ambiguous name from USING",
         "The name is declared in none of the enclosing namespaces but in two or more of the namespaces named by `USING`: qualify it (`Motion.Clamp`) to say which one is meant.";
+    E217 => "item of an INTERNAL namespace used outside",
+        "The item belongs to a `NAMESPACE INTERNAL N` (or to a namespace nested in one): it is visible in the namespace that encloses `N` and in everything nested there, for an INTERNAL namespace at the top only inside `N` itself. Use it from there, or drop INTERNAL.";
 
     // ---- Allen-Bradley SLC-500 ladder (automat-dialect, slc/) ----
     E230 => "unknown SLC-500 instruction",

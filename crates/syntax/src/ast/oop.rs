@@ -35,6 +35,8 @@ pub struct Method {
     pub return_type: Option<TypeSpec>,
     pub var_blocks: Vec<VarBlock>,
     pub body: Vec<Stmt>,
+    /// `USING A.B;` after the method's header: namespaces its body sees.
+    pub usings: Vec<crate::ast::Using>,
     pub span: Span,
 }
 

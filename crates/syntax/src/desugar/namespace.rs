@@ -20,8 +20,11 @@
 //! is a variable of the POU. Local variables, methods and properties hide
 //! namespace items of the same name.
 //!
-//! Not enforced yet: `NAMESPACE INTERNAL` (read, visible everywhere), and
-//! INTERNAL methods are visible everywhere, as without namespaces.
+//! `USING` after a METHOD's header adds to the namespaces its body sees.
+//!
+//! `NAMESPACE INTERNAL N`: its items (and those of the namespaces nested
+//! in it) are visible in the namespace enclosing `N` and everything nested
+//! there; for an INTERNAL namespace at the top, only inside `N` (E217).
 
 use crate::ast::oop::{Class, Interface, Method, Property};
 use crate::ast::{
@@ -36,9 +39,14 @@ use std::collections::{HashMap, HashSet};
 /// references (a project without NAMESPACE is left untouched).
 /// Diagnostics: E215, E216.
 pub fn desugar_namespaces(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Diagnostic> {
-    let any = units
-        .iter()
-        .any(|u| u.items.iter().any(|i| matches!(i, Item::Namespace(_))));
+    // A METHOD's USING too: with no namespace declared, it names none (E215).
+    let any = units.iter().any(|u| {
+        u.items.iter().any(|i| match i {
+            Item::Namespace(_) => true,
+            Item::Class(c) => c.methods.iter().any(|m| !m.usings.is_empty()),
+            _ => false,
+        })
+    });
     if !any {
         return Vec::new();
     }
@@ -88,6 +96,10 @@ struct Tables {
     namespaces: HashSet<Path>,
     /// (namespace, name as declared there) → the item's qualified name.
     members: HashMap<(Path, Symbol), Symbol>,
+    /// The qualified name of an item → its namespace.
+    home: HashMap<Symbol, Path>,
+    /// The namespaces declared `NAMESPACE INTERNAL` (any opening of them).
+    internal: HashSet<Path>,
 }
 
 impl Tables {
@@ -97,6 +109,7 @@ impl Tables {
                 for name in declared_names(item) {
                     let flat = qualified(path, name.sym, interner);
                     self.members.insert((path.to_vec(), name.sym), flat);
+                    self.home.insert(flat, path.to_vec());
                 }
             }
             return;
@@ -105,6 +118,9 @@ impl Tables {
         for part in &n.name {
             inner.push(part.sym);
             self.namespaces.insert(inner.clone());
+        }
+        if n.internal && !n.name.is_empty() {
+            self.internal.insert(inner.clone());
         }
         for i in &n.items {
             self.collect(i, &inner, interner);
@@ -162,7 +178,25 @@ impl Rewriter<'_> {
                 let n: Namespace = *n;
                 let mut inner = scope.clone();
                 inner.path.extend(n.name.iter().map(|i| i.sym));
-                for u in &n.usings {
+                self.add_usings(&mut inner, &n.usings);
+                for i in n.items {
+                    self.flatten(i, &inner, out);
+                }
+            }
+            mut item => {
+                self.rename_declared(&mut item, &scope.path);
+                self.item(&mut item, scope);
+                out.push(item);
+            }
+        }
+    }
+
+    /// Resolves `USING` clauses written in `inner` (relative to its path
+    /// outwards, then global) and adds them to it (E215 for an unknown one).
+    fn add_usings(&mut self, inner: &mut Scope, usings: &[crate::ast::Using]) {
+        {
+            {
+                for u in usings {
                     let mut found = None;
                     let written: Path = u.path.iter().map(|i| i.sym).collect();
                     // Relative to the namespace's own path outwards, then global.
@@ -186,14 +220,36 @@ impl Rewriter<'_> {
                         }
                     }
                 }
-                for i in n.items {
-                    self.flatten(i, &inner, out);
-                }
             }
-            mut item => {
-                self.rename_declared(&mut item, &scope.path);
-                self.item(&mut item, scope);
-                out.push(item);
+        }
+    }
+
+    /// E217 when item `flat` lies in an INTERNAL namespace not visible from `scope`.
+    fn check_internal(&mut self, flat: Symbol, scope: &Scope, span: Span) {
+        let Some(home) = self.t.home.get(&flat) else {
+            return;
+        };
+        for k in 1..=home.len() {
+            let ns = &home[..k];
+            if !self.t.internal.contains(ns) {
+                continue;
+            }
+            let parent = &ns[..k - 1];
+            let visible = scope.path.starts_with(ns)
+                || (!parent.is_empty() && scope.path.starts_with(parent));
+            if !visible {
+                let (item, nsname) = (self.interner.name(flat).to_string(), self.spell_path(ns));
+                let where_ = if parent.is_empty() {
+                    format!("inside `{nsname}` only")
+                } else {
+                    format!("in `{}` only", self.spell_path(parent))
+                };
+                self.diags.push(Diagnostic::error(
+                    Code::E217,
+                    span,
+                    format!("`{item}` belongs to the INTERNAL namespace `{nsname}`: it is visible {where_}"),
+                ));
+                return;
             }
         }
     }
@@ -237,6 +293,15 @@ impl Rewriter<'_> {
                 return Some(*f);
             }
         }
+        let hit = self.resolve_using(scope, id);
+        if let Some(f) = hit {
+            self.check_internal(f, scope, id.span);
+        }
+        hit
+    }
+
+    /// An unqualified name through the USING'd namespaces (E216 when two declare it).
+    fn resolve_using(&mut self, scope: &Scope, id: Ident) -> Option<Symbol> {
         let mut hits: Vec<Symbol> = Vec::new();
         for u in &scope.usings {
             if let Some(f) = self.t.members.get(&(u.clone(), id.sym)) {
@@ -286,6 +351,7 @@ impl Rewriter<'_> {
             let parts: Vec<String> = text.split('.').map(str::to_string).collect();
             let syms: Vec<Symbol> = parts.iter().map(|p| self.interner.intern(p)).collect();
             if let Some(f) = self.resolve_qualified(scope, &syms) {
+                self.check_internal(f, scope, id.span);
                 id.sym = f;
             }
         } else if let Some(f) = self.resolve_simple(scope, *id) {
@@ -353,6 +419,17 @@ impl Rewriter<'_> {
     }
 
     fn method(&mut self, m: &mut Method, scope: &Scope) {
+        let own;
+        let scope = if m.usings.is_empty() {
+            scope
+        } else {
+            let mut inner = scope.clone();
+            let usings = std::mem::take(&mut m.usings);
+            self.add_usings(&mut inner, &usings);
+            m.usings = usings;
+            own = inner;
+            &own
+        };
         if let Some(t) = &mut m.return_type {
             self.ty(t, scope);
         }
@@ -406,9 +483,8 @@ impl Rewriter<'_> {
             // A VAR_EXTERNAL names a global: one of a namespace, maybe.
             if b.kind == VarKind::External {
                 for n in &mut d.names {
-                    if let Some(f) = self.resolve_simple(scope, *n) {
-                        n.sym = f;
-                    }
+                    // `Motion.MaxPos` or a name seen from here.
+                    self.type_name(scope, n);
                 }
             }
             self.ty(&mut d.ty, scope);
@@ -632,6 +708,7 @@ impl Rewriter<'_> {
                 continue;
             };
             let (_, head_span) = members[j - 2];
+            self.check_internal(flat, scope, head_span);
             let mut out = Expr {
                 kind: ExprKind::Name(Ident {
                     sym: flat,

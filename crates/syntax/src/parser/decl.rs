@@ -101,7 +101,10 @@ impl Parser<'_> {
             self.bump();
         }
         let mut decls = Vec::new();
-        self.decl_list(opener, false, |p| p.var_decl(), &mut decls);
+        let external = kind == VarKind::External;
+        self.qualified_names = external;
+        self.decl_list(opener, external, |p| p.var_decl(), &mut decls);
+        self.qualified_names = false;
         VarBlock {
             kind,
             constant,
@@ -169,10 +172,20 @@ impl Parser<'_> {
     #[inline(never)]
     fn decl_head(&mut self) -> Option<(Vec<Ident>, Option<Location>)> {
         let mut names = Vec::new();
-        if let Some(first) = self.ident_here() {
+        let first = if self.qualified_names {
+            self.qualified_ident_here()
+        } else {
+            self.ident_here()
+        };
+        if let Some(first) = first {
             names.push(first);
             while self.eat(Tok::Comma) {
-                match self.expect_ident("a variable name after `,`") {
+                let next = if self.qualified_names && matches!(self.peek(), Tok::Ident(_)) {
+                    self.qualified_ident_here()
+                } else {
+                    self.expect_ident("a variable name after `,`")
+                };
+                match next {
                     Some(n) => names.push(n),
                     None => {
                         self.recover_decl();

@@ -56,7 +56,7 @@ impl Parser<'_> {
                 }
                 Tok::Ident(_) if self.is_word("CLASS") && matches!(self.nth(1), Tok::Ident(_)) => {
                     if let Some(c) = self.class() {
-                        items.push(Item::Class(Box::new(c)));
+                        items.push(self.with_pou_usings(Item::Class(Box::new(c))));
                     }
                 }
                 Tok::Ident(_)
@@ -124,6 +124,7 @@ impl Parser<'_> {
             return_type: None,
             var_blocks: Vec::new(),
             body,
+            usings: Vec::new(),
             span,
         };
         let fb = matches!(items.last(), Some(Item::Pou(p)) if p.kind == PouKind::FunctionBlock);

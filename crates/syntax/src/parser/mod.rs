@@ -72,6 +72,9 @@ pub struct Parser<'a> {
     /// The `USING` clauses read in the current POU's header (`namespace.rs`
     /// wraps the POU in a namespace without a name for them).
     pou_usings: Vec<crate::ast::Using>,
+    /// In a VAR_EXTERNAL block: names may be qualified (`Motion.MaxPos`,
+    /// a global of a namespace).
+    qualified_names: bool,
     il_fb_s: Vec<automat_base::Symbol>,
     /// The dialect's reading rules (`--lib codesys`).
     opts: crate::Options,
@@ -103,6 +106,7 @@ pub fn parse_tokens(
         lex_error_ends: diags.iter().map(|d| d.span.end).collect(),
         oop_depth: 0,
         pou_usings: Vec::new(),
+        qualified_names: false,
         pou_actions: Vec::new(),
         il_fb_r: Vec::new(),
         il_fb_s: Vec::new(),

@@ -238,6 +238,7 @@ impl Parser<'_> {
             None
         };
         self.eat(Tok::Semi);
+        let usings = self.usings();
         let var_blocks = self.var_blocks_here();
         let body = self.oop_body();
         self.close_word("END_METHOD", opener);
@@ -251,6 +252,7 @@ impl Parser<'_> {
             return_type,
             var_blocks,
             body,
+            usings,
             span: self.span_from(opener.start),
         }
     }
@@ -303,6 +305,7 @@ impl Parser<'_> {
         self.fb_modifiers_before_name(&mut head);
         let name = self.expect_ident("the name of the class");
         self.fb_head_after_name(&mut head);
+        self.pou_usings = self.usings();
         let var_blocks = self.var_blocks_here();
         let (mut methods, mut properties) = (Vec::new(), Vec::new());
         self.oop_depth += 1;

@@ -101,6 +101,7 @@ impl<'a> Oop<'a> {
                         return_type: Some(p.ty.clone()),
                         var_blocks: g.var_blocks.clone(),
                         body: g.body.clone(),
+                        usings: Vec::new(),
                         span: g.span,
                     };
                     items.push(self.method_fn_item(c, k, &m, fname));
@@ -132,6 +133,7 @@ impl<'a> Oop<'a> {
                         return_type: None,
                         var_blocks: blocks,
                         body: s.body.clone(),
+                        usings: Vec::new(),
                         span: s.span,
                     };
                     let mut item = self.method_fn_item(c, k, &m, fname);
