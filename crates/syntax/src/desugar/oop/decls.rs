@@ -1,6 +1,7 @@
 //! Declarations: class and interface types in variable declarations, and the POU rewrite entry.
 
 use super::*;
+use crate::ast::{FieldInit, Initializer};
 
 impl<'a> Oop<'a> {
     pub(super) fn retype_block(&mut self, b: &mut VarBlock) {
@@ -110,6 +111,109 @@ impl<'a> Oop<'a> {
         names
     }
 
+    /// Initial values of interface variables and references to a base
+    /// class, as written in `blocks` (before retyping): `d : IDevice := v;`
+    /// and `r : REF_TO Motor := REF(f);` become the structure's initialiser
+    /// `(__id := <class of v>, __r<id> := REF(v))`; `:= NULL` is no
+    /// instance (the structure's default).
+    pub(super) fn itf_inits(&mut self, blocks: &mut [VarBlock], cx: &Ctx) {
+        for b in blocks.iter_mut() {
+            for decl in &mut b.decls {
+                self.itf_init(decl, cx);
+            }
+        }
+    }
+
+    fn itf_init(&mut self, decl: &mut VarDecl, cx: &Ctx) {
+        let Some(Initializer::Expr(init)) = &decl.init else {
+            return;
+        };
+        // The interface the declaration stands for, and whether the value
+        // is written as a reference (`REF(x)`).
+        let (itf, by_ref) = match &decl.ty {
+            TypeSpec::Named(id)
+                if self.itfs.contains_key(&id.sym) && !self.poly_class.contains_key(&id.sym) =>
+            {
+                (id.sym, false)
+            }
+            TypeSpec::Ref { target, .. } => match &**target {
+                TypeSpec::Named(id) => match self.poly.get(&id.sym) {
+                    Some(i) => (*i, true),
+                    None => return,
+                },
+                _ => return,
+            },
+            _ => return,
+        };
+        if self.is_nothing(init) {
+            decl.init = None;
+            return;
+        }
+        let span = init.span;
+        let inst = if by_ref {
+            match &init.kind {
+                ExprKind::Call { callee, args }
+                    if self.is_word(callee, "REF") && args.len() == 1 =>
+                {
+                    match args.first().and_then(|a| a.value.clone()) {
+                        Some(v) => v,
+                        None => return,
+                    }
+                }
+                _ => return,
+            }
+        } else {
+            init.clone()
+        };
+        let T::Class(c) = self.type_of(&inst, cx) else {
+            return;
+        };
+        if self.bad_impl.contains(&c) || self.broken.contains(&c) {
+            decl.init = None;
+            return;
+        }
+        if !self.implements(c, itf) {
+            let cn = self.name(c);
+            let msg = match self.poly_class.get(&itf) {
+                Some(b) => {
+                    let bn = self.name(*b);
+                    format!("`{cn}` is neither `{bn}` nor derived from it: a reference to `{bn}` cannot designate it")
+                }
+                None => format!("`{cn}` does not implement interface `{}`", self.name(itf)),
+            };
+            self.err(Code::E212, span, msg);
+            decl.init = None;
+            return;
+        }
+        let k = self.ids.get(&c).copied().unwrap_or(0);
+        let id_sym = self.sym("__id");
+        let r = format!("__r{k}");
+        let r = self.sym(&r);
+        let rsym = self.sym("REF");
+        let lit = Expr {
+            kind: ExprKind::Literal(Box::new(Literal {
+                kind: LitKind::Int(i128::from(k)),
+                ty: None,
+            })),
+            span,
+        };
+        decl.init = Some(Initializer::Struct {
+            fields: vec![
+                FieldInit {
+                    name: Ident { sym: id_sym, span },
+                    value: Initializer::Expr(lit),
+                    span,
+                },
+                FieldInit {
+                    name: Ident { sym: r, span },
+                    value: Initializer::Expr(super::poly::call_expr(rsym, vec![inst], span)),
+                    span,
+                },
+            ],
+            span,
+        });
+    }
+
     pub(super) fn locals_of(blocks: &[VarBlock]) -> HashMap<Symbol, TypeSpec> {
         let mut m = HashMap::new();
         for b in blocks {
@@ -138,6 +242,7 @@ impl<'a> Oop<'a> {
             pou: Some(p.name.sym),
             byref,
         };
+        self.itf_inits(&mut p.var_blocks, &cx);
         for b in &mut p.var_blocks {
             self.retype_block(b);
         }

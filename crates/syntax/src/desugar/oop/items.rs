@@ -18,6 +18,16 @@ impl<'a> Oop<'a> {
             }
         }
         let byref = self.split_poly_inouts(&mut var_blocks);
+        let written = Ctx {
+            class: Some(c),
+            defined_in: Some(c),
+            in_method: false,
+            locals: Self::locals_of(&var_blocks),
+            result: None,
+            pou: None,
+            byref: HashSet::new(),
+        };
+        self.itf_inits(&mut var_blocks, &written);
         for b in &mut var_blocks {
             self.retype_block(b);
         }

@@ -125,17 +125,31 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
     d.pou_params = collect_params(units);
     d.returns = collect_returns(units);
     collect_names(units, &mut d.types, &mut d.pou_vars, &mut d.globals);
+    let global_cx = Ctx {
+        class: None,
+        defined_in: None,
+        in_method: false,
+        locals: d.globals.clone(),
+        result: None,
+        pou: None,
+        byref: HashSet::new(),
+    };
     for unit in units.iter_mut() {
         for item in &mut unit.items {
             match item {
                 Item::Pou(p) => d.rewrite_pou(p),
-                Item::Globals(b) => d.retype_block(b),
+                Item::Globals(b) => {
+                    d.itf_inits(std::slice::from_mut(b), &global_cx);
+                    d.retype_block(b);
+                }
                 Item::Config(c) => {
                     for b in &mut c.globals {
+                        d.itf_inits(std::slice::from_mut(b), &global_cx);
                         d.retype_block(b);
                     }
                     for r in &mut c.resources {
                         for b in &mut r.globals {
+                            d.itf_inits(std::slice::from_mut(b), &global_cx);
                             d.retype_block(b);
                         }
                     }
