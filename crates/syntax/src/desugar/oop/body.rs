@@ -82,6 +82,12 @@ impl<'a> Oop<'a> {
         let span = s.span;
         match &mut s.kind {
             StmtKind::Assign { target, value } => {
+                // `r^.prop := v` through a reference to a base class.
+                if let Some(k) = self.poly_prop_set(target, value, cx) {
+                    s.kind = k;
+                    self.depth -= 1;
+                    return;
+                }
                 // `x.prop := v` / `prop := v`: the SET accessor.
                 if let Some((c, this, prop)) = self.prop_target(target, cx) {
                     let mut v = value.clone();

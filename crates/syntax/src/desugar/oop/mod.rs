@@ -30,7 +30,9 @@
 //!   `VAR_IN_OUT x : B` (made an input in the same place); `r^.m()` and
 //!   `x.m()` are interface calls (the override of the instance's class),
 //!   `r^.f` / `x.f` of an input or output is `__BR_<B^>__f(r)^`, a CASE on
-//!   the class number returning the reference to that instance's field.
+//!   the class number returning the reference to that instance's field;
+//!   a property's GET/SET through them is `__BG_`/`__BS_<B^>__p`, the
+//!   same CASE calling the class's `__PG_`/`__PS_`.
 //!   `REF(d)` and a reference to a derived class convert (`__IC_`); a
 //!   reference to a base does not go into a reference to a derived class.
 //!
@@ -200,6 +202,13 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
     for (a, target, f) in std::mem::take(&mut d.itf_pointers) {
         if let Some((u, _)) = itfs.get(&a) {
             out.push((*u, d.itf_pointer_fn(a, target, f)));
+        }
+    }
+    for (i, prop, get) in std::mem::take(&mut d.poly_props) {
+        if let Some((u, _)) = itfs.get(&i) {
+            if let Some(item) = d.poly_prop_fn(i, prop, get) {
+                out.push((*u, item));
+            }
         }
     }
     for (i, field) in std::mem::take(&mut d.poly_fields) {
@@ -486,6 +495,8 @@ struct Oop<'a> {
     poly_class: HashMap<Symbol, Symbol>,
     /// `__BR_<B^>__<field>` functions asked for by `r^.field`, in the order first met.
     poly_fields: Vec<(Symbol, Symbol)>,
+    /// `__BG_`/`__BS_<B^>__<prop>` accessor dispatchers asked for (interface, property, GET).
+    poly_props: Vec<(Symbol, Symbol, bool)>,
     /// `__ITF_<I>` -> `I` (declarations already retyped).
     itf_structs: HashMap<Symbol, Symbol>,
     /// The result type of every plain FUNCTION, as written.
@@ -543,6 +554,7 @@ impl<'a> Oop<'a> {
             poly: HashMap::new(),
             poly_class: HashMap::new(),
             poly_fields: Vec::new(),
+            poly_props: Vec::new(),
             itf_structs,
             returns: HashMap::new(),
             itf_equals: Vec::new(),

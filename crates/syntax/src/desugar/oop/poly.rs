@@ -201,11 +201,26 @@ impl<'a> Oop<'a> {
                 return;
             }
             None if self.property_of(b, member.sym).is_some() => {
-                self.err(
-                    Code::E210,
-                    member.span,
-                    format!("the property `{n}` cannot be reached through a reference to `{bn}` yet: use a method"),
-                );
+                // A read of the property: the GET of the instance's class.
+                let Some((_, prop)) = self.property_of(b, member.sym) else {
+                    return;
+                };
+                self.check_access(b, prop.visibility, member, cx);
+                if prop.get.is_none() {
+                    self.err(
+                        Code::E210,
+                        member.span,
+                        format!("the property `{n}` has no GET"),
+                    );
+                    return;
+                }
+                let mut obj = obj;
+                self.expr(&mut obj, cx);
+                if !self.poly_props.contains(&(i, member.sym, true)) {
+                    self.poly_props.push((i, member.sym, true));
+                }
+                let f = self.prop_dispatch_name(i, member.sym, true);
+                *e = call_expr(f, vec![obj], span);
                 return;
             }
             None => {
@@ -246,6 +261,176 @@ impl<'a> Oop<'a> {
                 format!("the output `{n}` of `{bn}` cannot be written from outside"),
             );
         }
+    }
+
+    /// `r^.prop := v` through a reference to a base class: the SET of the
+    /// instance's class, `__BS_<B^>__<prop>(r, v)`. `None`: not such a target.
+    pub(super) fn poly_prop_set(
+        &mut self,
+        target: &Expr,
+        value: &Expr,
+        cx: &Ctx,
+    ) -> Option<StmtKind> {
+        let ExprKind::Member { base, member } = &target.kind else {
+            return None;
+        };
+        let (i, obj) = self.poly_view(base, cx)?;
+        let b = self.poly_class.get(&i).copied()?;
+        if self.class_var_kind(b, member.sym).is_some() {
+            return None;
+        }
+        let (_, prop) = self.property_of(b, member.sym)?;
+        self.check_access(b, prop.visibility, *member, cx);
+        if prop.set.is_none() {
+            let n = self.name(member.sym);
+            self.err(
+                Code::E210,
+                member.span,
+                format!("the property `{n}` has no SET"),
+            );
+            return Some(StmtKind::Empty);
+        }
+        let mut obj = obj;
+        self.expr(&mut obj, cx);
+        let mut v = value.clone();
+        self.expr(&mut v, cx);
+        if !self.poly_props.contains(&(i, member.sym, false)) {
+            self.poly_props.push((i, member.sym, false));
+        }
+        let f = self.prop_dispatch_name(i, member.sym, false);
+        Some(StmtKind::Expr(call_expr(f, vec![obj, v], target.span)))
+    }
+
+    fn prop_dispatch_name(&mut self, i: Symbol, p: Symbol, get: bool) -> Symbol {
+        let pre = if get { "__BG_" } else { "__BS_" };
+        let n = format!("{pre}{}__{}", self.name(i), self.name(p));
+        self.sym(&n)
+    }
+
+    /// `FUNCTION __BG_<B^>__<p> : <type>` (GET) or `__BS_<B^>__<p>` (SET,
+    /// with the input `__v`) over `__o : __ITF_<B^>`: a CASE on the class
+    /// number calling that class's accessor; without an instance it
+    /// dereferences the first class's NULL reference (the runtime's fault).
+    pub(super) fn poly_prop_fn(&mut self, i: Symbol, p: Symbol, get: bool) -> Option<Item> {
+        let b = self.poly_class.get(&i).copied()?;
+        let (_, prop) = self.property_of(b, p)?;
+        let mut ty = prop.ty.clone();
+        self.retype_spec(&mut ty, VarKind::Local);
+        let span = self.itf(i).map_or(Span::default(), |x| x.name.span);
+        let fsym = self.prop_dispatch_name(i, p, get);
+        let osym = self.sym("__o");
+        let vsym = self.sym("__v");
+        let id_sym = self.sym("__id");
+        let ssym = {
+            let n = format!("__ITF_{}", self.name(i));
+            self.sym(&n)
+        };
+        let this_sym = self.this;
+        let id = |s: Symbol| Ident { sym: s, span };
+        let name_e = |s: Symbol| Expr {
+            kind: ExprKind::Name(id(s)),
+            span,
+        };
+        let member_e = |b: Expr, m: Symbol| Expr {
+            kind: ExprKind::Member {
+                base: Box::new(b),
+                member: id(m),
+            },
+            span,
+        };
+        let named = |n: Symbol, v: Expr| Arg {
+            name: Some(id(n)),
+            dir: ArgDir::In,
+            value: Some(v),
+            span,
+        };
+        let mut arms = Vec::new();
+        let mut first = None;
+        for c in self.implementors(i) {
+            let k = self.ids.get(&c).copied().unwrap_or(0);
+            let r = format!("__r{k}");
+            let r = self.sym(&r);
+            let this = Expr {
+                kind: ExprKind::Deref(Box::new(member_e(name_e(osym), r))),
+                span,
+            };
+            let accessor = self.prop_fn(c, p, get);
+            let mut args = vec![named(this_sym, this)];
+            if !get {
+                args.push(named(p, name_e(vsym)));
+            }
+            let call = Expr {
+                kind: ExprKind::Call {
+                    callee: Box::new(name_e(accessor)),
+                    args,
+                },
+                span,
+            };
+            let stmt = Stmt {
+                kind: if get {
+                    StmtKind::Assign {
+                        target: name_e(fsym),
+                        value: call,
+                    }
+                } else {
+                    StmtKind::Expr(call)
+                },
+                span,
+            };
+            if first.is_none() {
+                first = Some(stmt.clone());
+            }
+            arms.push(CaseArm {
+                labels: vec![CaseLabel::Value(Expr {
+                    kind: ExprKind::Literal(Box::new(Literal {
+                        kind: LitKind::Int(i128::from(k)),
+                        ty: None,
+                    })),
+                    span,
+                })],
+                body: vec![stmt],
+                span,
+            });
+        }
+        let body = if arms.is_empty() {
+            Vec::new()
+        } else {
+            vec![Stmt {
+                kind: StmtKind::Case {
+                    selector: member_e(name_e(osym), id_sym),
+                    arms,
+                    else_body: first.map(|s| vec![s]),
+                },
+                span,
+            }]
+        };
+        let decl = |n: Symbol, t: TypeSpec| VarDecl {
+            names: vec![id(n)],
+            location: None,
+            ty: t,
+            edge: None,
+            init: None,
+            span,
+        };
+        let mut decls = vec![decl(osym, TypeSpec::Named(id(ssym)))];
+        if !get {
+            decls.push(decl(vsym, ty.clone()));
+        }
+        Some(Item::Pou(Pou {
+            kind: PouKind::Function,
+            name: id(fsym),
+            return_type: get.then_some(ty),
+            var_blocks: vec![VarBlock {
+                kind: VarKind::Input,
+                constant: false,
+                retain: Default::default(),
+                decls,
+                span,
+            }],
+            body: Body::St(body),
+            lang: Lang::St,
+            span,
+        }))
     }
 
     fn field_fn_name(&mut self, i: Symbol, field: Symbol) -> Symbol {
