@@ -194,7 +194,8 @@ impl Layout {
                 .and_then(|f| f.init.get(&sym.addr.index()))
                 .map(|v| match (v, sym.addr.part) {
                     (Operand::Int(v), Part::Bit(_, b)) => {
-                        if (v >> b) & 1 == 1 { " := TRUE" } else { " := FALSE" }.to_string()
+                        let set = (v >> b) & 1 == 1;
+                        format!(" := {}", if set { "TRUE" } else { "FALSE" })
                     }
                     (Operand::Int(v), _) if sym.addr.ty == FileType::F => format!(" := {v}.0"),
                     (Operand::Int(v), _) if *v > 32767 => format!(" := {}", v - 65536),
