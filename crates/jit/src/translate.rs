@@ -738,7 +738,7 @@ impl Tx<'_, '_> {
         self.proved_range(a, size)?;
         let Base::Reg(r) = a.base else { return None };
         let v = self.get(r).ok()?;
-        let at = self.b.ins().iadd_imm_s(v, a.offset as i64);
+        let at = self.b.ins().iadd_imm_s(v, signed_offset(a));
         Some(self.b.ins().iadd(self.image, at))
     }
 
@@ -749,8 +749,8 @@ impl Tx<'_, '_> {
         let Some(Fact::This(lo, hi)) = self.facts.get(&r).copied() else {
             return None;
         };
-        let lo = lo.checked_add(a.offset as i64)?;
-        let end = hi.checked_add(a.offset as i64)?.checked_add(size as i64)?;
+        let lo = lo.checked_add(signed_offset(a))?;
+        let end = hi.checked_add(signed_offset(a))?.checked_add(size as i64)?;
         (self.this_safe && lo >= 0 && end as u64 <= self.extent).then_some((lo as u64, end as u64))
     }
 
@@ -814,6 +814,17 @@ impl Tx<'_, '_> {
         }
         Ok(())
     }
+}
+
+/// The offset of a register address as a signed number. Why: an array
+/// element `a[i]` with `a` at `this + k` and elements of `n` bytes is
+/// lowered as `(this + n * i) + (k - n * lo)`, where the offset wraps
+/// below zero as a u32 (the interpreter's `(v as u32).wrapping_add(off)`).
+/// When `v + off` computed this way lies in `0 ..= extent` (checked by
+/// `proved_range`), that u32 sum does not wrap and is the same number, so
+/// the access is proved like any other.
+fn signed_offset(a: Addr) -> i64 {
+    a.offset as i32 as i64
 }
 
 /// The context layout generated code relies on.
