@@ -23,7 +23,7 @@ const MAX_CALLS: usize = 8;
 
 pub struct Emitter<'a> {
     p: &'a Project,
-    layout: &'a mut Layout,
+    pub(super) layout: &'a mut Layout,
     pub diags: Vec<Diagnostic>,
     /// The files being inlined (a file calling itself is refused).
     stack: Vec<u32>,
@@ -31,11 +31,12 @@ pub struct Emitter<'a> {
     loops: u32,
     /// A remainder slot per timer element: (file, word index) → slot.
     rems: BTreeMap<(u32, u32), usize>,
-    /// A slot per PID block for its integral and last PV.
+    /// A slot per PID block for its integral, last PV, last error and
+    /// last valid setpoint.
     pids: BTreeMap<(u32, u32), usize>,
     /// The instruction being emitted, as diagnostics name it
     /// (`LAD 2 rung 4, `ADD N7:0 1 N7:1``).
-    here: String,
+    pub(super) here: String,
     /// The math instructions that can set the overflow trap S:5/0, as
     /// [`Emitter::here`] named them; the one that set it last is
     /// `__slc_trap` = its index + 1 at the end of the scan.
@@ -48,6 +49,9 @@ pub struct Emitter<'a> {
     /// The model element of each contact or coil, by the instruction's
     /// place in its file: its power flow is `__ld_n<id>`.
     pub(super) elements: BTreeMap<(automat_base::FileId, u32), u32>,
+    /// The run-time checks of indexed and indirect addresses: what each
+    /// fault means (the check line carries its number, `fault_marker`).
+    pub faults: Vec<String>,
 }
 
 /// Where the rungs of one inlined file run.
@@ -68,14 +72,40 @@ fn is_real(o: &Operand) -> bool {
     match o {
         Operand::Real(_) => true,
         Operand::Addr(a) => a.ty == FileType::F,
+        Operand::Dyn(d) => d.is_real(),
         _ => false,
+    }
+}
+
+/// A word operand (direct, indexed or indirect) as an ST place.
+fn word(o: &Operand) -> String {
+    match o {
+        Operand::Addr(a) => place(*a),
+        Operand::Dyn(d) => d.word(),
+        _ => String::new(),
+    }
+}
+
+/// A bit operand's value as ST.
+fn read_bit(o: &Operand) -> String {
+    match o {
+        Operand::Dyn(d) => d.read_bit(),
+        _ => word(o),
+    }
+}
+
+/// Writes `v` (BOOL ST) to a bit operand.
+fn write_bit(o: &Operand, v: &str) -> String {
+    match o {
+        Operand::Dyn(d) => d.write_bit(v),
+        _ => format!("{} := {v};", word(o)),
     }
 }
 
 /// An integer operand as INT text.
 fn int(o: &Operand) -> String {
     match o {
-        Operand::Addr(a) => place(*a),
+        Operand::Addr(_) | Operand::Dyn(_) => word(o),
         Operand::Int(v) => v.to_string(),
         _ => "0".into(),
     }
@@ -83,15 +113,17 @@ fn int(o: &Operand) -> String {
 
 fn dint(o: &Operand) -> String {
     match o {
-        Operand::Addr(_) => format!("INT_TO_DINT({})", int(o)),
+        Operand::Addr(_) | Operand::Dyn(_) => format!("INT_TO_DINT({})", int(o)),
         _ => int(o),
     }
 }
 
 fn lreal(o: &Operand) -> String {
     match o {
-        Operand::Addr(a) if a.ty == FileType::F => format!("REAL_TO_LREAL({})", place(*a)),
-        Operand::Addr(a) => format!("INT_TO_LREAL({})", place(*a)),
+        Operand::Addr(_) | Operand::Dyn(_) if is_real(o) => {
+            format!("REAL_TO_LREAL({})", word(o))
+        }
+        Operand::Addr(_) | Operand::Dyn(_) => format!("INT_TO_LREAL({})", word(o)),
         Operand::Int(v) => format!("{v}.0"),
         Operand::Real(v) => real(*v),
         _ => "0.0".into(),
@@ -125,6 +157,7 @@ impl<'a> Emitter<'a> {
             next_id: 1,
             hidden: Vec::new(),
             elements: BTreeMap::new(),
+            faults: Vec::new(),
         }
     }
 
@@ -150,6 +183,7 @@ impl<'a> Emitter<'a> {
         {
             let _ = self.file(n, 1);
         }
+        let sti = self.sti();
         // A file inlined at several JSRs reports its errors once.
         let mut seen = BTreeSet::new();
         self.diags
@@ -174,10 +208,15 @@ impl<'a> Emitter<'a> {
         s.push_str("    __slc_started : BOOL;\n    __slc_last : LINT;\n    __slc_fault : __SLC_MAJOR_FAULT;\nEND_VAR\nVAR\n    __slc_trap : INT;\n");
         let _ = writeln!(
             s,
-            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d, __i : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;\n    __pidi, __pidp : ARRAY[0..{}] OF LREAL;",
+            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d, __i : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;\n    __pidi, __pidp, __pide, __pids : ARRAY[0..{}] OF LREAL;\n    __sti : DINT;",
             MAX_BRANCH * (MAX_CALLS + 1) - 1,
             self.rems.len().max(1) - 1,
             self.pids.len().max(1) - 1
+        );
+        let _ = writeln!(
+            s,
+            "    __ix, __ib, __if : ARRAY[0..{0}] OF DINT;\n    __iv : ARRAY[0..{0}] OF INT;",
+            self.p.dynamic.max(1) - 1
         );
         for k in 0..self.loops {
             let _ = writeln!(s, "    __pc{k} : INT;\n    __j{k} : BOOL;");
@@ -187,9 +226,41 @@ impl<'a> Emitter<'a> {
         }
         s.push_str("END_VAR\n");
         s.push_str("    __now := TIME_TO_LINT(__SCAN_TIME());\n    IF __slc_started THEN __d := LINT_TO_DINT(__now - __slc_last); ELSE __d := 0; END_IF;\n    __slc_last := __now;\n    (* S:1/15 first pass *)\n    S2[1].15 := NOT __slc_started;\n    __mcr := TRUE;\n    __tnd := FALSE;\n    __slc_trap := 0;\n");
+        s.push_str(&sti);
         s.push_str(&main);
         s.push_str("    __slc_started := TRUE;\n");
         // The overflow trap and END_PROGRAM follow (`super::trap_check`).
+        s
+    }
+
+    /// The Selectable Timed Interrupt, run before program file 2: S:30
+    /// the interval in ms of PLC time, S:31 the file. Each whole interval
+    /// elapsed since the previous scan runs the file once (the remainder
+    /// kept in `__sti`); S:30 <= 0 or S:31 naming no subroutine file
+    /// disables it and drops the time. Generated only when the program
+    /// has S:31 (S2 of at least 32 words) and subroutine files.
+    fn sti(&mut self) -> String {
+        let words = self.layout.files.get(&2).map_or(0, |f| f.elements);
+        let files: Vec<u32> = self.p.files.keys().copied().filter(|&n| n >= 3).collect();
+        if words < 32 || files.is_empty() {
+            return String::new();
+        }
+        let mut s = format!(
+            "    (* STI: S:30 interval (ms), S:31 file *)\n    IF S2[30] > 0 AND (S2[31] = {}) THEN\n    __sti := __sti + __d;\n    WHILE S2[30] > 0 AND __sti >= INT_TO_DINT(S2[30]) DO\n    __sti := __sti - INT_TO_DINT(S2[30]);\n    CASE S2[31] OF\n",
+            files
+                .iter()
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join(" OR S2[31] = ")
+        );
+        for n in files {
+            let code = self.file(n, 1);
+            let _ = write!(
+                s,
+                "    {n}:\n    __mcr := TRUE;\n    __tnd := FALSE;\n{code}"
+            );
+        }
+        s.push_str("    END_CASE;\n    END_WHILE;\n    ELSE\n    __sti := 0;\n    END_IF;\n    __mcr := TRUE;\n    __tnd := FALSE;\n");
         s
     }
 
@@ -365,22 +436,43 @@ impl<'a> Emitter<'a> {
         place(addr(&i.ops.first().cloned().unwrap_or(Operand::Int(0))))
     }
 
+    /// An instruction's ST: its indexed and indirect operands resolved
+    /// and checked first (`dynamic.rs`), written back after when one is
+    /// the destination in a file found at run time.
     pub(super) fn ins(&mut self, n: u32, r: usize, i: &Ins, level: &Level) -> String {
+        self.here = format!("LAD {n} rung {r}, `{}`", i.text);
+        let mut before = String::new();
+        let mut after = String::new();
+        let kinds = super::instr::find(i.mn).map_or(&[][..], |d| d.operands);
+        for (k, o) in i.ops.iter().enumerate() {
+            if let Operand::Dyn(d) = o {
+                let dest = kinds.get(k) == Some(&super::instr::Kind::Dest);
+                let (b, a) = self.resolve(d, dest);
+                before.push_str(&b);
+                after.push_str(&a);
+            }
+        }
+        let body = self.ins_body(n, r, i, level);
+        format!("{before}{body}{after}")
+    }
+
+    fn ins_body(&mut self, n: u32, r: usize, i: &Ins, level: &Level) -> String {
         self.here = format!("LAD {n} rung {r}, `{}`", i.text);
         let ops = &i.ops;
         let op = |k: usize| ops.get(k).cloned().unwrap_or(Operand::Int(0));
         let a0 = addr(&op(0));
         let gate = |body: String| format!("    IF __rc THEN {body} END_IF;\n");
         match i.mn {
-            "XIC" => format!("    __rc := __rc AND {};\n", place(a0)),
-            "XIO" => format!("    __rc := __rc AND NOT {};\n", place(a0)),
-            "OTE" => format!("    {} := __rc;\n", place(a0)),
-            "OTL" => gate(format!("{} := TRUE;", place(a0))),
-            "OTU" => gate(format!("{} := FALSE;", place(a0))),
-            "OSR" => {
-                let b = place(a0);
-                format!("    __t := __rc AND NOT {b}; {b} := __rc; __rc := __t;\n")
-            }
+            "XIC" => format!("    __rc := __rc AND {};\n", read_bit(&op(0))),
+            "XIO" => format!("    __rc := __rc AND NOT {};\n", read_bit(&op(0))),
+            "OTE" => format!("    {}\n", write_bit(&op(0), "__rc")),
+            "OTL" => gate(write_bit(&op(0), "TRUE")),
+            "OTU" => gate(write_bit(&op(0), "FALSE")),
+            "OSR" => format!(
+                "    __t := __rc AND NOT {}; {} __rc := __t;\n",
+                read_bit(&op(0)),
+                write_bit(&op(0), "__rc")
+            ),
             "TON" | "TOF" | "RTO" => {
                 let (base, pre, acc) = match (op(1), op(2), op(3)) {
                     (Operand::Base(b), Operand::Int(p), Operand::Int(a)) => (b, p, a),
@@ -490,7 +582,7 @@ impl<'a> Emitter<'a> {
                     ),
                 };
                 let realm = is_real(&a) || is_real(&b);
-                gate(self.store(addr(&op(2)), realm, &ie, &re, &carry))
+                gate(self.store(&op(2), realm, &ie, &re, &carry))
             }
             "NEG" | "ABS" | "MOV" => {
                 let a = op(0);
@@ -499,13 +591,13 @@ impl<'a> Emitter<'a> {
                     "ABS" => (format!("ABS({})", dint(&a)), format!("ABS({})", lreal(&a))),
                     _ => (dint(&a), lreal(&a)),
                 };
-                gate(self.store(addr(&op(1)), is_real(&a), &ie, &re, "FALSE"))
+                gate(self.store(&op(1), is_real(&a), &ie, &re, "FALSE"))
             }
             "SQR" => {
                 let a = op(0);
                 let re = format!("SQRT(ABS({}))", lreal(&a));
                 let carry = format!("{} < 0.0", lreal(&a));
-                gate(self.store(addr(&op(1)), true, "", &re, &carry))
+                gate(self.store(&op(1), true, "", &re, &carry))
             }
             "SCL" => {
                 let re = format!(
@@ -514,7 +606,7 @@ impl<'a> Emitter<'a> {
                     lreal(&op(1)),
                     lreal(&op(2))
                 );
-                gate(self.store(addr(&op(3)), true, "", &re, "FALSE"))
+                gate(self.store(&op(3), true, "", &re, "FALSE"))
             }
             "SCP" => {
                 let (x, il, ih, sl, sh) = (
@@ -525,9 +617,9 @@ impl<'a> Emitter<'a> {
                     lreal(&op(4)),
                 );
                 let re = format!("__SLC_FDIV(({x} - {il}) * ({sh} - {sl}), {ih} - {il}) + {sl}");
-                gate(self.store(addr(&op(5)), true, "", &re, "FALSE"))
+                gate(self.store(&op(5), true, "", &re, "FALSE"))
             }
-            "CLR" => gate(self.store(a0, false, "0", "0.0", "FALSE")),
+            "CLR" => gate(self.store(&op(0), false, "0", "0.0", "FALSE")),
             "AND" | "OR" | "XOR" | "NOT" | "MVM" => {
                 if !self.ints(n, r, i, ops) {
                     return String::new();
@@ -549,7 +641,7 @@ impl<'a> Emitter<'a> {
                     ),
                 };
                 let ie = format!("INT_TO_DINT({e})");
-                gate(self.store(addr(&dest), false, &ie, "", "FALSE"))
+                gate(self.store(&dest, false, &ie, "", "FALSE"))
             }
             "JSR" => {
                 let Some(Operand::Number(k)) = ops.first().cloned() else {
@@ -608,9 +700,9 @@ impl<'a> Emitter<'a> {
                 let w = |k: u32| format!("{arr}[{}]", b + k);
                 let k = self.pid_slot(a0);
                 format!(
-                    "    __x := __SLC_PID(RUNG := __rc, D := __d, PV := {}, SP := {}, KC := {}, TI := {}, TD := {}, BIAS := {}, OMAX := {}, OMIN := {}, UPD := {}, CTL := {}, W14 := {}, W15 := {}, W16 := {}, W17 := {}, W18 := {}, CV := {}, REM := __rem[{k}], I := __pidi[{}], PREV := __pidp[{}]);\n",
-                    int(&op(1)), w(2), w(3), w(4), w(5), w(6), w(11), w(12), w(13), w(0), w(14), w(15), w(16), w(17), w(18),
-                    place(addr(&op(2))), self.pids_index(a0), self.pids_index(a0)
+                    "    __x := __SLC_PID(RUNG := __rc, D := __d, PVIN := {}, SP := {}, KC := {}, TI := {}, TD := {}, BIAS := {}, SMAX := {}, SMIN := {}, DB := {}, OMAX := {}, OMIN := {}, UPD := {}, CTL := {}, W14 := {}, W15 := {}, W16 := {}, W17 := {}, W18 := {}, CV := {}, REM := __rem[{k}], I := __pidi[{p}], PREV := __pidp[{p}], PREVE := __pide[{p}], LSP := __pids[{p}]);\n",
+                    int(&op(1)), w(2), w(3), w(4), w(5), w(6), w(7), w(8), w(9), w(11), w(12), w(13), w(0), w(14), w(15), w(16), w(17), w(18),
+                    place(addr(&op(2))), p = self.pids_index(a0)
                 )
             }
             "SBR" | "LBL" | "NOP" => String::new(),
@@ -679,7 +771,7 @@ impl<'a> Emitter<'a> {
                 let dest = addr(&op(1));
                 let v = if dest.ty == FileType::F {
                     match op(0) {
-                        Operand::Addr(a) if a.ty == FileType::F => place(a),
+                        o @ (Operand::Addr(_) | Operand::Dyn(_)) if is_real(&o) => word(&o),
                         o => format!("LREAL_TO_REAL({})", lreal(&o)),
                     }
                 } else if is_real(&op(0)) {
@@ -717,7 +809,7 @@ impl<'a> Emitter<'a> {
                     let _ = writeln!(s, "    {c}.15 := __rc;");
                 } else {
                     let (fa, fi) = at(&op(0));
-                    let dest = place(addr(&op(1)));
+                    let dest = word(&op(1));
                     let _ = writeln!(s, "    IF __rc AND NOT {c}.14 THEN IF {pos} > 0 AND {pos} <= {l} THEN {dest} := {fa}[{fi}]; FOR __i := 0 TO INT_TO_DINT({pos}) - 2 DO {fa}[{fi} + __i] := {fa}[{fi} + __i + 1]; END_FOR; {fa}[{fi} + {pos} - 1] := 0; {pos} := {pos} - 1; END_IF; END_IF;");
                     let _ = writeln!(s, "    {c}.14 := __rc;");
                 }
@@ -736,7 +828,7 @@ impl<'a> Emitter<'a> {
                 let set = |k: &str, v: &str| {
                     format!("{aa}[{ai} + ({k}) / 16] := __SLC_SETBIT({aa}[{ai} + ({k}) / 16], ({k}) MOD 16, {v});")
                 };
-                let src = place(addr(&op(2)));
+                let src = read_bit(&op(2));
                 let last = (l - 1).to_string();
                 let body = if i.mn == "BSL" {
                     format!(
@@ -784,13 +876,13 @@ impl<'a> Emitter<'a> {
             format!("{ca}[{}]", ci + 2),
         );
         let f = addr(&op(0));
-        let word = format!("{}[{} + {pos}]", f.array(), f.index());
+        let step = format!("{}[{} + {pos}]", f.array(), f.index());
         let act = if i.mn == "SQO" {
-            let d = place(addr(&op(2)));
-            format!("{d} := __SLC_MVM({word}, {}, {d});", int(&op(1)))
+            let d = word(&op(2));
+            format!("{d} := __SLC_MVM({step}, {}, {d});", int(&op(1)))
         } else {
             format!(
-                "{c}.8 := __SLC_MEQ({}, {}, {word});",
+                "{c}.8 := __SLC_MEQ({}, {}, {step});",
                 int(&op(2)),
                 int(&op(1))
             )
@@ -821,7 +913,7 @@ impl<'a> Emitter<'a> {
         self.rem(a)
     }
 
-    /// The integral and last-PV slot of a PID block.
+    /// The state slot of a PID block (`__pidi`, `__pidp`, `__pide`, `__pids`).
     fn pids_index(&mut self, a: Address) -> usize {
         let next = self.pids.len();
         *self.pids.entry((a.file, a.index())).or_insert(next)
@@ -837,16 +929,16 @@ impl<'a> Emitter<'a> {
     /// when `dest` is a float).
     /// S:0/1 tells whether this store overflowed: then it is the one to
     /// name when the trap S:5/0 faults at the end of the scan.
-    fn store(&mut self, dest: Address, realm: bool, ie: &str, re: &str, carry: &str) -> String {
+    fn store(&mut self, dest: &Operand, realm: bool, ie: &str, re: &str, carry: &str) -> String {
         self.traps.push(self.here.clone());
         let k = self.traps.len();
         let store = self.store_status(dest, realm, ie, re, carry);
         format!("{store} IF S2[0].1 THEN __slc_trap := {k}; END_IF;")
     }
 
-    fn store_status(&self, dest: Address, realm: bool, ie: &str, re: &str, carry: &str) -> String {
-        let d = place(dest);
-        if dest.ty == FileType::F {
+    fn store_status(&self, dest: &Operand, realm: bool, ie: &str, re: &str, carry: &str) -> String {
+        let d = word(dest);
+        if is_real(dest) {
             let re = if realm || ie.is_empty() {
                 re.to_string()
             } else {

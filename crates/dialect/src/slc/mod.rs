@@ -22,6 +22,7 @@
 //! the other instructions are the ST of `emit.rs` between the network's
 //! segments. `ladder_to_st` is the one place the ladder becomes ST.
 
+mod dynamic;
 mod emit;
 mod instr;
 mod layout;
@@ -185,12 +186,13 @@ pub fn live_sheets(map: &SourceMap) -> Vec<LiveSheet> {
 /// text that raise the SLC's major faults.
 fn ladder_to_st(project: &mut parse::Project) -> Generated {
     let mut layout = layout::Layout::new(project);
-    let (body, traps, mut diags) = {
+    let (body, traps, faults, mut diags) = {
         let mut e = emit::Emitter::new(project, &mut layout);
         let body = e.program();
         (
             body,
             std::mem::take(&mut e.traps),
+            std::mem::take(&mut e.faults),
             std::mem::take(&mut e.diags),
         )
     };
@@ -201,10 +203,34 @@ fn ladder_to_st(project: &mut parse::Project) -> Generated {
     s.push_str("TYPE __SLC_MAJOR_FAULT : INT (0..0); END_TYPE\n\n");
     s.push_str(&layout.globals(project));
     s.push_str(include_str!("../../lib/slc.st"));
+    let at = s.len();
     s.push_str(&body);
-    let meanings = trap_check(&mut s, &traps);
+    let mut meanings = check_meanings(&s, at, &faults);
+    meanings.extend(trap_check(&mut s, &traps));
     s.push_str("END_PROGRAM\n");
     (s, meanings)
+}
+
+/// What the run-time checks of indexed and indirect addresses mean: each
+/// check line (from `at`, found by its marker) and its fault message.
+fn check_meanings(s: &str, at: usize, faults: &[String]) -> Vec<(std::ops::Range<u32>, String)> {
+    let mut out = Vec::new();
+    let mut start = at;
+    for line in s[at..].split_inclusive('\n') {
+        let end = start + line.len();
+        if let Some(k) = line
+            .trim_end()
+            .strip_suffix(" *)")
+            .and_then(|l| l.rsplit_once("(* slc check "))
+            .and_then(|(_, k)| k.parse::<usize>().ok())
+        {
+            if let Some(m) = faults.get(k) {
+                out.push((start as u32..end as u32, m.clone()));
+            }
+        }
+        start = end;
+    }
+    out
 }
 
 /// The end of the scan: the overflow trap S:5/0 left set is a major fault

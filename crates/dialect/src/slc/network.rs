@@ -35,6 +35,15 @@ pub fn fits(rung: &Rung) -> bool {
             Elem::Bnd(_) => depth = depth.saturating_sub(1),
             Elem::Nxb(_) => {}
             Elem::Ins(i) if depth > 0 && !in_model(i.mn) => return false,
+            // An indexed or indirect bit is no variable of the model.
+            Elem::Ins(i)
+                if in_model(i.mn)
+                    && i.ops
+                        .iter()
+                        .any(|o| matches!(o, super::parse::Operand::Dyn(_))) =>
+            {
+                return false
+            }
             Elem::Ins(_) => {}
         }
     }

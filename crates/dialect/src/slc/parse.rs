@@ -12,6 +12,7 @@
 // ST generation are kept for the ladder drawing (issue 12 point 6).
 #![allow(dead_code)]
 
+use super::dynamic::{self, Dynamic};
 use super::instr::{self, Kind};
 use automat_base::slc::{self, Address, FileType, Part};
 use automat_base::{Code, Diagnostic, FileId, Span};
@@ -27,6 +28,8 @@ pub enum Operand {
     Base(i64),
     /// A program file (JSR) or label (JMP, LBL) number.
     Number(u32),
+    /// An indexed (`#N7:0`) or indirect (`N7:[N7:0]`) word or bit.
+    Dyn(Box<Dynamic>),
 }
 
 #[derive(Clone, Debug)]
@@ -91,6 +94,8 @@ pub struct Project {
     /// "beyond a declared file" check).
     pub used: Vec<(Address, Span)>,
     pub diags: Vec<Diagnostic>,
+    /// Indexed and indirect operands read so far (each has its slot).
+    pub dynamic: usize,
 }
 
 /// A word of a line with its byte range in the file.
@@ -598,9 +603,41 @@ impl<'a> Reader<'a> {
             if !ok {
                 break;
             }
-            for (o, ot) in ops.iter().zip(ops_toks) {
-                if let Operand::Addr(a) = o {
-                    self.p.used.push((*a, self.span(ot)));
+            if def.name == "PID" && ops.iter().any(|o| matches!(o, Operand::Dyn(_))) {
+                self.err(
+                    Code::E236,
+                    ispan,
+                    format!("{at}, `{text}`: PID takes direct addresses only"),
+                );
+                ok = false;
+                break;
+            }
+            for (o, ot) in ops.iter_mut().zip(ops_toks) {
+                match o {
+                    Operand::Addr(a) => self.p.used.push((*a, self.span(ot))),
+                    Operand::Dyn(d) => {
+                        d.slot = self.p.dynamic;
+                        self.p.dynamic += 1;
+                        let s = self.span(ot);
+                        // The file must exist (an indirect file is any of its type).
+                        if d.file_from.is_none() {
+                            self.p.used.push((d.addr, s));
+                        }
+                        for a in d.pointers() {
+                            self.p.used.push((a, s));
+                        }
+                        if d.indexed {
+                            // The index register S:24.
+                            let s24 = Address {
+                                ty: FileType::S,
+                                file: 2,
+                                elem: 24,
+                                part: Part::Element,
+                            };
+                            self.p.used.push((s24, s));
+                        }
+                    }
+                    _ => {}
                 }
             }
             // A run of words: its last element is used too.
@@ -680,8 +717,11 @@ impl<'a> Reader<'a> {
         {
             return Ok(s.addr);
         }
-        if t.up.starts_with('#') || t.up.contains('[') {
-            return Err("indexed (`#`) and indirect (`[ ]`) addresses are not implemented".into());
+        if dynamic::is_dynamic(&t.up) {
+            return Err(format!(
+                "`{}`: an indexed (`#`) or indirect (`[ ]`) address is a word or bit operand (a source, a destination, a bit), not a timer, counter, control or block",
+                t.text
+            ));
         }
         if is_name(&t.text) && !slc::looks_like(&t.text) {
             return Err(format!(
@@ -743,6 +783,21 @@ impl<'a> Reader<'a> {
                 Some(c) => Ok(c),
                 None => Err(wrong("no constant")),
             },
+            Kind::Source | Kind::Dest | Kind::Bit if dynamic::is_dynamic(&t.up) => {
+                let d = dynamic::parse(&t.up, 0).map_err(|why| (Code::E236, why))?;
+                let ok = match kind {
+                    Kind::Bit => d.is_bit(),
+                    _ => !d.is_bit(),
+                };
+                if !ok {
+                    return Err(wrong(if kind == Kind::Bit {
+                        "no bit address: an indirect bit is `B3/[N7:1]`, `B3:[N7:0]/5`, `B3:0/[N7:2]`"
+                    } else {
+                        "no word address: an indexed or indirect word is `#N7:0`, `N7:[N7:0]`, `N[N7:0]:1`"
+                    }));
+                }
+                Ok(Operand::Dyn(Box::new(d)))
+            }
             _ => {
                 let a = self.address(t).map_err(|why| (Code::E236, why))?;
                 let ok = match kind {

@@ -84,6 +84,7 @@ impl Build<'_> {
             Operand::Real(v) => v.to_string(),
             Operand::Base(ms) => format!("{}", *ms as f64 / 1000.0),
             Operand::Number(n) => n.to_string(),
+            Operand::Dyn(d) => d.text.clone(),
         }
     }
 

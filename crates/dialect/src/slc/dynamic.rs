@@ -1,0 +1,364 @@
+//! Indexed and indirect addresses: the ones whose word (or bit) is found
+//! at run time.
+//!
+//! - indexed `#N7:5`: the word `5 + S:24` of N7 (the index register S:24
+//!   holds an offset in elements of the file: words of B and N, floats of F);
+//! - indirect `N7:[N7:0]` (the element is the value of N7:0), `N[N7:0]:1`
+//!   (the file number is the value of N7:0), `B3:[N7:0]/5`, `B3:0/[N7:2]`
+//!   (the bit of the word) and the flat bit `B3/[N7:1]` (bit N7:1 of the
+//!   file), as RSLogix 500 writes them.
+//!
+//! The emitter computes the word index before the instruction runs
+//! (`__ix[k]`, the bit in `__ib[k]`, the file in `__if[k]`) and checks it
+//! against the data file: outside it, the PLC stops with an SLC major fault
+//! naming the rung and the instruction (never an engine's bounds check).
+
+use automat_base::slc::{self, Address, FileType, Part};
+use std::fmt::Write;
+
+/// An address resolved at run time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dynamic {
+    /// The address with its run-time parts at 0 (the element, the bit) or,
+    /// for an indirect file, at file 9 of its type.
+    pub addr: Address,
+    /// `#`: offset by the index register S:24.
+    pub indexed: bool,
+    /// The word holding the file number (`N[N7:0]:1`).
+    pub file_from: Option<Address>,
+    /// The word holding the element number (`N7:[N7:0]`).
+    pub elem_from: Option<Address>,
+    /// The word holding the bit number (`B3:0/[N7:2]`, flat `B3/[N7:1]`).
+    pub bit_from: Option<Address>,
+    /// `bit_from` numbers the bits of the whole file (`B3/[N7:1]`).
+    pub flat: bool,
+    /// This operand's slot in `__ix`, `__ib`, `__if`, `__iv`.
+    pub slot: usize,
+    /// As written (upper case), for messages and drawings.
+    pub text: String,
+}
+
+/// Does the operand text name an indexed or indirect address?
+pub fn is_dynamic(up: &str) -> bool {
+    up.starts_with('#') || up.contains('[')
+}
+
+/// The word an indirect part is read from: a word of an integer file
+/// (`N7:0`, `T4:0.ACC`), not a bit, a float or another indirect address.
+fn pointer(inner: &str) -> Result<Address, String> {
+    if is_dynamic(inner) {
+        return Err(format!(
+            "`[{inner}]`: the word inside `[ ]` is a direct address (no `#`, no nested `[ ]`)"
+        ));
+    }
+    let a = slc::parse(inner)?;
+    if a.is_bit() || a.is_structure() || a.ty == FileType::F {
+        return Err(format!(
+            "`[{inner}]`: the word inside `[ ]` is an integer word (`N7:0`, `T4:0.ACC`), not a bit, a float or a whole element"
+        ));
+    }
+    Ok(a)
+}
+
+/// Parses an indexed or indirect address (`up` in upper case).
+pub fn parse(up: &str, slot: usize) -> Result<Dynamic, String> {
+    let bad = |why: &str| Err(format!("`{up}`: {why}"));
+    if let Some(rest) = up.strip_prefix('#') {
+        if rest.contains('[') {
+            return bad("an address is indexed (`#N7:0`) or indirect (`N7:[N7:0]`), not both");
+        }
+        let a = slc::parse(rest)?;
+        if a.part != Part::Element || !matches!(a.ty, FileType::B | FileType::N | FileType::F) {
+            return bad("an indexed address names a word of a B or N file or a float of an F file (`#N7:0`, `#F8:2`)");
+        }
+        return Ok(Dynamic {
+            addr: a,
+            indexed: true,
+            file_from: None,
+            elem_from: None,
+            bit_from: None,
+            flat: false,
+            slot,
+            text: up.to_string(),
+        });
+    }
+    // Each `[word]` is replaced by a placeholder the direct parser accepts,
+    // its place (after the type letter, `:` or `/`) saying what it gives.
+    let mut template = String::new();
+    let (mut file_from, mut elem_from, mut bit_from, mut flat) = (None, None, None, false);
+    let mut rest = up;
+    while let Some(open) = rest.find('[') {
+        let (head, tail) = rest.split_at(open);
+        let Some(close) = tail.find(']') else {
+            return bad("`[` without `]`");
+        };
+        let inner = &tail[1..close];
+        template.push_str(head);
+        let at = pointer(inner)?;
+        let before = template.chars().last();
+        let first = template.len() == 1;
+        match before {
+            Some(c) if first && FileType::from_letter(c).is_some() => {
+                if file_from.replace(at).is_some() {
+                    return bad("the file is given twice");
+                }
+                template.push('9');
+            }
+            Some(':') if elem_from.is_none() => {
+                elem_from = Some(at);
+                template.push('0');
+            }
+            Some('/') if bit_from.is_none() => {
+                flat = !template.contains(':');
+                bit_from = Some(at);
+                template.push('0');
+            }
+            _ => return bad("`[word]` stands for the file number (`N[N7:0]:1`), the element (`N7:[N7:0]`) or the bit (`B3/[N7:1]`, `B3:0/[N7:2]`)"),
+        }
+        rest = &tail[close + 1..];
+    }
+    if rest.contains(']') {
+        return bad("`]` without `[`");
+    }
+    template.push_str(rest);
+    let addr = slc::parse(&template).map_err(|why| format!("`{up}`: {why}"))?;
+    if addr.is_structure() {
+        return bad("a whole timer, counter or control element is no operand here");
+    }
+    if file_from.is_some() {
+        if addr.is_bit() || addr.ty == FileType::F {
+            return bad("an indirect file number is for words of integer files (`N[N7:0]:1`)");
+        }
+        if matches!(addr.ty, FileType::I | FileType::O | FileType::S) {
+            return bad("O, I and S are files 0, 1 and 2: their number is not indirect");
+        }
+    }
+    Ok(Dynamic {
+        addr,
+        indexed: false,
+        file_from,
+        elem_from,
+        bit_from,
+        flat,
+        slot,
+        text: up.to_string(),
+    })
+}
+
+impl Dynamic {
+    /// The direct addresses it reads the pointers from.
+    pub fn pointers(&self) -> impl Iterator<Item = Address> + '_ {
+        self.file_from
+            .iter()
+            .chain(&self.elem_from)
+            .chain(&self.bit_from)
+            .copied()
+    }
+
+    /// A bit (BOOL)?
+    pub fn is_bit(&self) -> bool {
+        self.addr.is_bit()
+    }
+
+    /// A float?
+    pub fn is_real(&self) -> bool {
+        self.addr.ty == FileType::F
+    }
+
+    /// The word (INT, REAL) it names once resolved, as an ST place.
+    pub fn word(&self) -> String {
+        if self.file_from.is_some() {
+            format!("__iv[{}]", self.slot)
+        } else {
+            format!("{}[__ix[{}]]", self.addr.array(), self.slot)
+        }
+    }
+
+    /// The bit number in its word, as ST.
+    fn bit_number(&self) -> String {
+        match (self.bit_from, self.addr.part) {
+            (Some(_), _) => format!("__ib[{}]", self.slot),
+            (None, Part::Bit(_, b)) => b.to_string(),
+            _ => "0".into(),
+        }
+    }
+
+    /// The bit's value, as ST.
+    pub fn read_bit(&self) -> String {
+        format!("__SLC_GETBIT({}, {})", self.word(), self.bit_number())
+    }
+
+    /// Writes `v` (BOOL ST) to the bit.
+    pub fn write_bit(&self, v: &str) -> String {
+        let w = self.word();
+        format!("{w} := __SLC_SETBIT({w}, {}, {v});", self.bit_number())
+    }
+}
+
+/// The marker ending a run-time check line of the generated ST: the
+/// fault raised on that line means `Emitter::faults[k]`.
+pub fn fault_marker(k: usize) -> String {
+    format!("(* slc check {k} *)")
+}
+
+impl super::emit::Emitter<'_> {
+    /// A check: the PLC stops (the subrange fault of `__slc_fault`) when
+    /// `bad` holds, the fault saying `what` and the instruction.
+    fn check(&mut self, bad: &str, what: String) -> String {
+        let k = self.faults.len();
+        self.faults
+            .push(format!("SLC major fault: {what} ({})", self.here));
+        format!(
+            "    __slc_fault := BOOL_TO_INT({bad}); {}\n",
+            fault_marker(k)
+        )
+    }
+
+    /// The ST resolving `d` in data file `file` into `__ix` (and `__ib`),
+    /// with its checks.
+    fn index_in(&mut self, d: &Dynamic, file: u32) -> String {
+        let k = d.slot;
+        let Some(f) = self.layout.files.get(&file) else {
+            return String::new();
+        };
+        let (ty, elements) = (f.ty, f.elements);
+        let io = matches!(ty, FileType::I | FileType::O);
+        let stride = if io { slc::IO_SLOT_WORDS } else { ty.words() };
+        let len = if ty == FileType::F {
+            elements
+        } else {
+            elements * stride
+        };
+        let name = format!("{}{file}", ty.letter());
+        let word_of = |a: Address| format!("INT_TO_DINT({})", a.st_path().unwrap_or_default());
+        let text = d.text.clone();
+        let mut s = String::new();
+        if d.indexed {
+            let _ = writeln!(
+                s,
+                "    __ix[{k}] := {} + INT_TO_DINT(S2[24]);",
+                d.addr.index()
+            );
+            let what = format!(
+                "indexed address `{text}` + S:24 lies outside data file {name} ({} 0 to {})",
+                if ty == FileType::F {
+                    "elements"
+                } else {
+                    "words"
+                },
+                len - 1
+            );
+            s += &self.check(&format!("__ix[{k}] < 0 OR __ix[{k}] > {}", len - 1), what);
+            return s;
+        }
+        if let (true, Some(b)) = (d.flat, d.bit_from) {
+            let _ = writeln!(s, "    __ib[{k}] := {};", word_of(b));
+            let what = format!(
+                "indirect address `{text}`: the bit lies outside data file {name} (bits 0 to {})",
+                len * 16 - 1
+            );
+            s += &self.check(
+                &format!("__ib[{k}] < 0 OR __ib[{k}] > {}", len * 16 - 1),
+                what,
+            );
+            let _ = writeln!(
+                s,
+                "    __ix[{k}] := __ib[{k}] / 16; __ib[{k}] := __ib[{k}] MOD 16;"
+            );
+            return s;
+        }
+        let w = match d.addr.part {
+            Part::Element => 0,
+            Part::Word(w) | Part::Bit(w, _) => w,
+        };
+        match d.elem_from {
+            Some(e) => {
+                let _ = writeln!(s, "    __ix[{k}] := {};", word_of(e));
+                let what = format!(
+                    "indirect address `{text}`: the element is not one of data file {name} (0 to {})",
+                    elements - 1
+                );
+                s += &self.check(
+                    &format!("__ix[{k}] < 0 OR __ix[{k}] > {}", elements - 1),
+                    what,
+                );
+                let _ = writeln!(s, "    __ix[{k}] := __ix[{k}] * {stride} + {w};");
+            }
+            None => {
+                let elem = d.addr.elem;
+                if elem >= elements {
+                    // An indirect file smaller than the element named.
+                    let what = format!(
+                        "indirect address `{text}`: element {elem} is not one of data file {name} (0 to {})",
+                        elements - 1
+                    );
+                    s += &self.check(&format!("__ix[{k}] = __ix[{k}]"), what);
+                }
+                let _ = writeln!(s, "    __ix[{k}] := {};", elem * stride + w);
+            }
+        }
+        if let Some(b) = d.bit_from {
+            let _ = writeln!(s, "    __ib[{k}] := {};", word_of(b));
+            let what = format!("indirect address `{text}`: the bit is not 0 to 15");
+            s += &self.check(&format!("__ib[{k}] < 0 OR __ib[{k}] > 15"), what);
+        }
+        s
+    }
+
+    /// The ST run before an instruction with the operand `d` (its word
+    /// found and checked) and after it (a destination in a file found at
+    /// run time written back).
+    pub(super) fn resolve(&mut self, d: &Dynamic, dest: bool) -> (String, String) {
+        let k = d.slot;
+        let Some(f) = d.file_from else {
+            return (self.index_in(d, d.addr.file), String::new());
+        };
+        let files: Vec<u32> = self
+            .layout
+            .files
+            .iter()
+            .filter(|(_, f)| f.ty == d.addr.ty)
+            .map(|(n, _)| *n)
+            .collect();
+        if files.is_empty() {
+            let what = format!(
+                "indirect address `{}`: the project has no {} file",
+                d.text,
+                d.addr.ty.letter()
+            );
+            return (
+                self.check(&format!("__ix[{k}] = __ix[{k}]"), what),
+                String::new(),
+            );
+        }
+        let mut before = format!(
+            "    __if[{k}] := INT_TO_DINT({});\n    CASE __if[{k}] OF\n",
+            f.st_path().unwrap_or_default()
+        );
+        let mut after = format!("    CASE __if[{k}] OF\n");
+        for &n in &files {
+            let code = self.index_in(d, n);
+            let arr = format!("{}{n}", d.addr.ty.letter());
+            let _ = write!(
+                before,
+                "    {n}:\n{code}    __iv[{k}] := {arr}[__ix[{k}]];\n"
+            );
+            let _ = writeln!(after, "    {n}: {arr}[__ix[{k}]] := __iv[{k}];");
+        }
+        let list = files
+            .iter()
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(", ");
+        let what = format!(
+            "indirect address `{}`: the file number is not one of the {} files of the project ({list})",
+            d.text,
+            d.addr.ty.letter()
+        );
+        before.push_str("    ELSE\n");
+        before += &self.check(&format!("__if[{k}] = __if[{k}]"), what);
+        before.push_str("    END_CASE;\n");
+        after.push_str("    END_CASE;\n");
+        (before, if dest { after } else { String::new() })
+    }
+}
