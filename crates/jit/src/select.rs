@@ -1,8 +1,8 @@
 //! Two-armed `IF`s that only assign one variable, compiled without a jump.
 //!
-//! Why: a branch the processor cannot predict (the CRC-32's `IF (crc AND
-//! 1) = 1 THEN crc := SHR(crc, 1) XOR poly; ELSE crc := SHR(crc, 1);`
-//! on data bits) costs a pipeline flush on about every second run, more
+//! Why: a branch the processor cannot predict (the CRC-32's
+//! `IF (crc AND 1) = 1 THEN crc := SHR(crc, 1) XOR poly; ELSE
+//! crc := SHR(crc, 1);` on data bits) costs a pipeline flush on about every second run, more
 //! than both arms together. When each arm is one basic block of
 //! instructions that cannot fault or be observed (constants, moves,
 //! integer and float arithmetic, shifts, compares, loads of the instance)
