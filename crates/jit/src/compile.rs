@@ -8,9 +8,10 @@ use crate::translate::{self, Helpers};
 use crate::JitError;
 use automat_ir::code::Inst;
 use automat_ir::Program;
-use cranelift_codegen::ir::{types, AbiParam, Signature, UserFuncName};
+use cranelift_codegen::ir::{types, AbiParam, InstBuilder, Signature, UserFuncName};
+use cranelift_codegen::isa::CallConv;
 use cranelift_codegen::settings::{self, Configurable};
-use cranelift_frontend::FunctionBuilderContext;
+use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::{default_libcall_names, FuncId, Linkage, Module};
 
@@ -123,18 +124,22 @@ pub fn compile(program: &Program, counted: bool, flag: i64) -> Result<Compiled, 
         )
         .map_err(err)?;
 
-    let poll = m
+    let poll_rt = m
         .declare_function(
             "automat_jit_poll",
             Linkage::Import,
             &sig(&m, &[ptr, i64t, i64t, i64t], true),
         )
         .map_err(err)?;
+    let poll = poll_trampoline(&mut m, poll_rt, &[ptr, i64t, i64t, i64t])?;
 
     let mut builtins = Vec::new();
     let mut ctx = m.make_context();
     let mut fctx = FunctionBuilderContext::new();
     let wanted = reachable(program);
+    // `AUTOMAT_JIT_DUMP=1`: print every function's Cranelift IR and
+    // machine code to stderr (for profiling generated code).
+    let dump = std::env::var_os("AUTOMAT_JIT_DUMP").is_some();
     for (i, f) in program.funcs.iter().enumerate() {
         if !wanted.get(i).copied().unwrap_or(false) {
             continue;
@@ -185,8 +190,17 @@ pub fn compile(program: &Program, counted: bool, flag: i64) -> Result<Compiled, 
                 &mut builtins,
                 &program.funcs,
             )?;
+            if dump {
+                ctx.set_disasm(true);
+            }
             m.define_function(id, &mut ctx)
                 .map_err(|e| err(format!("{}: {e:?}", f.name)))?;
+            if dump {
+                eprintln!("=== {} entry={entry}\n{}", f.name, ctx.func.display());
+                if let Some(c) = ctx.compiled_code() {
+                    eprintln!("{}", c.vcode.as_deref().unwrap_or(""));
+                }
+            }
             m.clear_context(&mut ctx);
         }
     }
@@ -213,6 +227,51 @@ pub fn compile(program: &Program, counted: bool, flag: i64) -> Result<Compiled, 
         builtins,
         bounds,
     })
+}
+
+/// A function with the `preserve_all` convention (it saves every register
+/// it or its callee touches) that calls `rt::jit_poll` and leaves the
+/// status in `RunCtx::polled`. Why: a loop header's poll is a call on a
+/// cold path, but a call with the ordinary convention clobbers the
+/// caller-saved registers, so the register allocator kept loop variables
+/// live across it on the stack (the sieve's `j` went through memory on
+/// every iteration). Through this trampoline the call clobbers nothing.
+fn poll_trampoline(
+    m: &mut JITModule,
+    poll_rt: FuncId,
+    params: &[types::Type],
+) -> Result<FuncId, JitError> {
+    let mut s = sig(m, params, false);
+    s.call_conv = CallConv::PreserveAll;
+    let id = m
+        .declare_function("automat_poll_trampoline", Linkage::Local, &s)
+        .map_err(err)?;
+    let mut ctx = m.make_context();
+    ctx.func.signature = s;
+    ctx.func.name = UserFuncName::user(2, 0);
+    let target = m.declare_func_in_func(poll_rt, &mut ctx.func);
+    let mut fctx = FunctionBuilderContext::new();
+    let mut b = FunctionBuilder::new(&mut ctx.func, &mut fctx);
+    let entry = b.create_block();
+    b.append_block_params_for_function_params(entry);
+    b.switch_to_block(entry);
+    let args = b.block_params(entry).to_vec();
+    let call = b.ins().call(target, &args);
+    let status = b
+        .inst_results(call)
+        .first()
+        .copied()
+        .ok_or_else(|| err("poll result"))?;
+    let ctx_ptr = args.first().copied().ok_or_else(|| err("poll context"))?;
+    b.ins()
+        .store(translate::mem(), status, ctx_ptr, rt::OFF_POLLED);
+    b.ins().return_(&[]);
+    b.seal_all_blocks();
+    b.finalize(m.target_config());
+    m.define_function(id, &mut ctx)
+        .map_err(|e| err(format!("poll trampoline: {e:?}")))?;
+    m.clear_context(&mut ctx);
+    Ok(id)
 }
 
 /// The functions the tasks can run (all of them when there are no tasks,

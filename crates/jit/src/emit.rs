@@ -153,6 +153,29 @@ impl Tx<'_, '_> {
         let neg = self.b.ins().icmp_imm_s(IntCC::SignedLessThan, n, 0);
         let n = self.b.ins().select(neg, zero, n);
         match op {
+            ShiftOp::Shl | ShiftOp::Shr if matches!(width, 8 | 16 | 32) => {
+                // In the type's own width: the masks before and after the
+                // shift are the reduce and the zero-extension, which the
+                // machine does for free (no `and` with a 64-bit constant
+                // around every DWORD shift). `n >= w` still gives 0.
+                let narrow = match width {
+                    8 => types::I8,
+                    16 => types::I16,
+                    _ => types::I32,
+                };
+                let xn = self.b.ins().ireduce(narrow, a);
+                let r = if op == ShiftOp::Shl {
+                    self.b.ins().ishl(xn, n)
+                } else {
+                    self.b.ins().ushr(xn, n)
+                };
+                let r = self.b.ins().uextend(types::I64, r);
+                let big = self
+                    .b
+                    .ins()
+                    .icmp_imm_s(IntCC::UnsignedGreaterThanOrEqual, n, w);
+                self.b.ins().select(big, zero, r)
+            }
             ShiftOp::Shl | ShiftOp::Shr => {
                 let r = if op == ShiftOp::Shl {
                     self.b.ins().ishl(x, n)

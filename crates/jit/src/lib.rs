@@ -29,6 +29,7 @@ mod instances;
 mod locals;
 mod promote;
 mod rt;
+mod select;
 mod translate;
 
 use automat_ir::code::Inst;
@@ -237,6 +238,7 @@ impl Jit {
             shared: &*self.shared,
             mark: rt::first_mark(left),
             fault: None,
+            polled: 0,
         };
         // SAFETY: `entry` was compiled from this program with the `EntryFn`
         // signature; `ctx` points to the image we own mutably for the whole

@@ -26,6 +26,9 @@ pub struct RunCtx {
     pub mark: i64,
     /// The fault a helper recorded before generated code returned status 1.
     pub fault: Option<Fault>,
+    /// What the last [`jit_poll`] returned, written by the poll trampoline
+    /// (`compile.rs`), whose calling convention has no return value.
+    pub polled: i32,
 }
 
 pub const OFF_IMAGE: i32 = std::mem::offset_of!(RunCtx, image) as i32;
@@ -33,6 +36,7 @@ pub const OFF_LEN: i32 = std::mem::offset_of!(RunCtx, image_len) as i32;
 pub const OFF_LEFT: i32 = std::mem::offset_of!(RunCtx, left) as i32;
 pub const OFF_NOW: i32 = std::mem::offset_of!(RunCtx, now) as i32;
 pub const OFF_MARK: i32 = std::mem::offset_of!(RunCtx, mark) as i32;
+pub const OFF_POLLED: i32 = std::mem::offset_of!(RunCtx, polled) as i32;
 
 /// One `Inst::Builtin` of the program, numbered in compile order; generated
 /// code passes the number and a slot array holding the argument registers

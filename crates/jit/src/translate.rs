@@ -40,7 +40,9 @@ pub struct Helpers {
     pub fault: FuncRef,
     pub builtin: FuncRef,
     pub copy: FuncRef,
-    /// `rt::jit_poll`: the interrupt flag, polled at loop headers.
+    /// `rt::jit_poll` through its trampoline (`compile.rs`): the
+    /// interrupt flag, polled at loop headers; the status is left in
+    /// `RunCtx::polled`.
     pub poll: FuncRef,
     /// Whether the code counts the instruction budget (compiled so only
     /// when a finite budget is set): blocks charge their length, loop
@@ -182,7 +184,7 @@ pub fn this_extent(f: &Func) -> u64 {
 }
 
 /// Instruction indexes that start a basic block.
-fn leaders(code: &[Inst]) -> Vec<bool> {
+pub(crate) fn leaders(code: &[Inst]) -> Vec<bool> {
     let mut l = vec![false; code.len() + 1];
     if let Some(x) = l.first_mut() {
         *x = true;
@@ -392,6 +394,11 @@ impl Tx<'_, '_> {
         let code = &self.f.code;
         let lead = leaders(code);
         let headers = loop_headers(code);
+        let diamonds = if self.h.counted || !self.this_safe {
+            HashMap::new()
+        } else {
+            crate::select::diamonds(code, &lead, &crate::locals::slots(self.f, &lead))
+        };
         let mut blocks = Vec::with_capacity(code.len());
         for &is in lead.iter().take(code.len()) {
             blocks.push(is.then(|| self.b.create_block()));
@@ -420,6 +427,12 @@ impl Tx<'_, '_> {
                     .copied()
                     .ok_or_else(|| JitError::Backend("pc".into()))?;
                 self.pc = pc as u32;
+                if let (Inst::Branch { cond, .. }, Some(d)) = (inst, diamonds.get(&(pc as u32))) {
+                    let join = block_at(d.join)
+                        .ok_or_else(|| JitError::Backend(format!("no block at {}", d.join)))?;
+                    self.select(cond, d, join)?;
+                    continue;
+                }
                 self.control(&inst, pc as u32, &block_at)?;
             }
             if !code.get(end - 1).is_some_and(is_terminator) {
@@ -456,13 +469,13 @@ impl Tx<'_, '_> {
         self.b.ins().brif(due, slow, &[], cont, &[]);
         self.b.switch_to_block(slow);
         let (fv, pv) = (self.iconst(self.index as i64), self.iconst(pc as i64));
-        let call = self.b.ins().call(self.h.poll, &[self.ctx, l, fv, pv]);
+        // Through the trampoline that preserves every register, so that
+        // values live across the loop need not be spilled for this call.
+        self.b.ins().call(self.h.poll, &[self.ctx, l, fv, pv]);
         let status = self
             .b
-            .inst_results(call)
-            .first()
-            .copied()
-            .ok_or_else(|| JitError::Backend("poll result".into()))?;
+            .ins()
+            .load(types::I32, mem(), self.ctx, rt::OFF_POLLED);
         self.propagate(status);
         self.b.ins().jump(cont, &[]);
         self.b.switch_to_block(cont);
@@ -587,6 +600,54 @@ impl Tx<'_, '_> {
     }
 }
 
+impl Tx<'_, '_> {
+    /// A branch whose arms both store one instance slot (`select.rs`):
+    /// both arms computed, the chosen value stored once, then on to the
+    /// join. The arms' own blocks stay unreachable.
+    fn select(
+        &mut self,
+        cond: Reg,
+        d: &crate::select::Diamond,
+        join: cranelift_codegen::ir::Block,
+    ) -> Result<(), JitError> {
+        let code = self.f.code.as_slice();
+        let c = self.get(cond)?;
+        let mut chosen = Vec::with_capacity(2);
+        for arm in [&d.then, &d.els] {
+            self.facts.clear();
+            for pc in arm.pure.clone() {
+                let inst = code
+                    .get(pc)
+                    .copied()
+                    .ok_or_else(|| JitError::Backend("pc".into()))?;
+                self.pc = pc as u32;
+                self.emit(&inst)?;
+            }
+            let Some(Inst::Store { src, .. }) = code.get(arm.store).copied() else {
+                return Err(JitError::Backend("select store".into()));
+            };
+            chosen.push((src, self.get(src)?));
+        }
+        self.facts.clear();
+        let (Some(&(src, t)), Some(&(_, e))) = (chosen.first(), chosen.get(1)) else {
+            return Err(JitError::Backend("select arms".into()));
+        };
+        let v = self.b.ins().select(c, t, e);
+        // The then-arm's store, of the chosen value (its source register
+        // is local to that arm's block: nothing reads it afterwards).
+        self.set(src, v)?;
+        let store = code
+            .get(d.then.store)
+            .copied()
+            .ok_or_else(|| JitError::Backend("select store".into()))?;
+        self.pc = d.then.store as u32;
+        self.emit(&store)?;
+        self.facts.clear();
+        self.b.ins().jump(join, &[]);
+        Ok(())
+    }
+}
+
 impl<'a> Tx<'a, '_> {
     /// Compiles the body of callee `g` (function `index`) in place with
     /// `this` = `t`, when every `This` access of it is inside the image;
@@ -677,7 +738,7 @@ impl Tx<'_, '_> {
         self.proved_range(a, size)?;
         let Base::Reg(r) = a.base else { return None };
         let v = self.get(r).ok()?;
-        let at = self.b.ins().iadd_imm_s(v, a.offset as i64);
+        let at = self.b.ins().iadd_imm_s(v, signed_offset(a));
         Some(self.b.ins().iadd(self.image, at))
     }
 
@@ -688,8 +749,8 @@ impl Tx<'_, '_> {
         let Some(Fact::This(lo, hi)) = self.facts.get(&r).copied() else {
             return None;
         };
-        let lo = lo.checked_add(a.offset as i64)?;
-        let end = hi.checked_add(a.offset as i64)?.checked_add(size as i64)?;
+        let lo = lo.checked_add(signed_offset(a))?;
+        let end = hi.checked_add(signed_offset(a))?.checked_add(size as i64)?;
         (self.this_safe && lo >= 0 && end as u64 <= self.extent).then_some((lo as u64, end as u64))
     }
 
@@ -753,6 +814,17 @@ impl Tx<'_, '_> {
         }
         Ok(())
     }
+}
+
+/// The offset of a register address as a signed number. Why: an array
+/// element `a[i]` with `a` at `this + k` and elements of `n` bytes is
+/// lowered as `(this + n * i) + (k - n * lo)`, where the offset wraps
+/// below zero as a u32 (the interpreter's `(v as u32).wrapping_add(off)`).
+/// When `v + off` computed this way lies in `0 ..= extent` (checked by
+/// `proved_range`), that u32 sum does not wrap and is the same number, so
+/// the access is proved like any other.
+fn signed_offset(a: Addr) -> i64 {
+    a.offset as i32 as i64
 }
 
 /// The context layout generated code relies on.

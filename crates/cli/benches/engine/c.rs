@@ -79,19 +79,20 @@ impl Kernels {
         Ok(printed)
     }
 
-    /// The best wall time of `runs` whole processes running case `name`
-    /// once, and what the last one printed.
+    /// The best wall time of `runs` whole processes each running case
+    /// `name` `repeat` times, and what the last one printed.
     pub fn whole(
         &self,
         name: &str,
         runs: usize,
+        repeat: u32,
         period_ns: i64,
     ) -> Result<(Duration, Printed), String> {
         let mut best = Duration::MAX;
         let mut last = None;
         for _ in 0..runs.max(1) {
             let t = Instant::now();
-            let p = self.run(name, 1, period_ns)?;
+            let p = self.run(name, repeat as usize, period_ns)?;
             best = best.min(t.elapsed());
             last = Some(p);
         }
