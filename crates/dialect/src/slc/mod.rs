@@ -278,6 +278,32 @@ mod tests {
         assert!(st.is_some_and(|s| s.contains("__SLC_TON(RUNG := __rc")));
     }
 
+    /// The drawing's notes: above a contact its operand's description,
+    /// above a box each described operand's symbol and description.
+    #[test]
+    fn descriptions_are_noted_above_their_operands() {
+        let mut map = SourceMap::new();
+        map.add(
+            "t.slc",
+            "SYM T4:0 Dwell \"the dwell\"\nSYM B3/0 Go \"go\"\nXIC Go TON Dwell 0.01 300 0\n",
+        );
+        let texts: Vec<(automat_plcopen::sheet::NodeKind, String)> = sheet(&map, "2")
+            .map(|s| s.nodes.into_iter().map(|n| (n.kind, n.text)).collect())
+            .unwrap_or_default();
+        use automat_plcopen::sheet::NodeKind::*;
+        assert_eq!(
+            texts,
+            [
+                (Comment, "rung 0".to_string()),
+                (LeftRail, String::new()),
+                (Comment, "go".into()),
+                (Contact, "Go B3:0/0".into()),
+                (Comment, "Dwell: the dwell".into()),
+                (Block, "TON Dwell T4:0 0.01 300 0".into()),
+            ]
+        );
+    }
+
     /// Contacts, coils and branches go through the graphical model: the
     /// power flow in `__ld_n<id>` BOOLs, ids unique across the segments a
     /// timer cuts the rung into; a timer inside a branch keeps the rung ST.
