@@ -11,7 +11,6 @@ use automat_scenario::conformance::{self, Backend, Verdict};
 use clap::Args;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{mpsc, Arc, Mutex, OnceLock};
 use std::time::Instant;
 
@@ -426,21 +425,36 @@ fn print(r: &Report, warned: &mut BTreeSet<PathBuf>) {
 /// Runs the items on `jobs` threads; `each` sees the reports in item order
 /// as soon as they and every one before them are done.
 fn run_all(shared: &Shared, items: &[Item], jobs: usize, mut each: impl FnMut(Report)) {
-    let next = AtomicUsize::new(0);
+    let queue = crate::test_queue::Queue::new(
+        items
+            .iter()
+            .map(|item| match item {
+                Item::Scenario(p) => find_above(p),
+                Item::Conformance(_) => None,
+            })
+            .collect(),
+    );
     let (tx, rx) = mpsc::channel::<(usize, Report)>();
     std::thread::scope(|scope| {
         for _ in 0..jobs.clamp(1, items.len().max(1)) {
             let tx = tx.clone();
-            let next = &next;
+            let queue = &queue;
             // Interpreting a program may recurse deeply: the main thread's
             // stack size, not a spawned thread's 2 MiB.
             let spawned = std::thread::Builder::new()
                 .stack_size(8 << 20)
-                .spawn_scoped(scope, move || loop {
-                    let i = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(item) = items.get(i) else { break };
-                    if tx.send((i, shared.item(item))).is_err() {
-                        break;
+                .spawn_scoped(scope, move || {
+                    while let Some(take) = queue.take() {
+                        if let Some((project, toml)) = &take.build {
+                            shared.project(toml);
+                            queue.built(*project);
+                        }
+                        let Some(item) = items.get(take.item) else {
+                            break;
+                        };
+                        if tx.send((take.item, shared.item(item))).is_err() {
+                            break;
+                        }
                     }
                 });
             if let Err(e) = spawned {
@@ -459,8 +473,7 @@ fn run_all(shared: &Shared, items: &[Item], jobs: usize, mut each: impl FnMut(Re
         }
     });
     // No thread could start: run them here.
-    let done = next.load(Ordering::Relaxed).min(items.len());
-    if done == 0 {
+    if queue.taken() == 0 {
         for item in items {
             each(shared.item(item));
         }

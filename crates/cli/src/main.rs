@@ -45,6 +45,7 @@ mod project_run;
 mod realtime_run;
 mod retain_run;
 mod test_pool;
+mod test_queue;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

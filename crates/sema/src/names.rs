@@ -280,9 +280,10 @@ fn write_expr(out: &mut String, interner: &Interner, e: &Expr, depth: u32) {
 /// How a name is shown in messages: the POUs `automat_syntax::desugar_oop`
 /// generates are named after the class and method they stand for
 /// (`__M_Motor__Start`, `__MS_Fan__Motor__Kind`, `__PG_T__Speed` and
-/// `__PS_T__Speed`, `__ID_IShape__Area`); anything else is itself.
+/// `__PS_T__Speed`, `__ID_IShape__Area`, `__BR_Motor^__ticks` a field read
+/// through a reference to a base class); anything else is itself.
 pub fn display_name(n: &str) -> std::borrow::Cow<'_, str> {
-    for prefix in ["__M_", "__PG_", "__PS_", "__ID_"] {
+    for prefix in ["__M_", "__PG_", "__PS_", "__ID_", "__BR_"] {
         if let Some(rest) = n.strip_prefix(prefix) {
             if let Some((class, member)) = rest.split_once("__") {
                 return format!("{class}.{member}").into();

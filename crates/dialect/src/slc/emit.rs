@@ -31,7 +31,8 @@ pub struct Emitter<'a> {
     loops: u32,
     /// A remainder slot per timer element: (file, word index) → slot.
     rems: BTreeMap<(u32, u32), usize>,
-    /// A slot per PID block for its integral and last PV.
+    /// A slot per PID block for its integral, last PV, last error and
+    /// last valid setpoint.
     pids: BTreeMap<(u32, u32), usize>,
     /// The instruction being emitted, as diagnostics name it
     /// (`LAD 2 rung 4, `ADD N7:0 1 N7:1``).
@@ -182,6 +183,7 @@ impl<'a> Emitter<'a> {
         {
             let _ = self.file(n, 1);
         }
+        let sti = self.sti();
         // A file inlined at several JSRs reports its errors once.
         let mut seen = BTreeSet::new();
         self.diags
@@ -206,7 +208,7 @@ impl<'a> Emitter<'a> {
         s.push_str("    __slc_started : BOOL;\n    __slc_last : LINT;\n    __slc_fault : __SLC_MAJOR_FAULT;\nEND_VAR\nVAR\n    __slc_trap : INT;\n");
         let _ = writeln!(
             s,
-            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d, __i : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;\n    __pidi, __pidp : ARRAY[0..{}] OF LREAL;",
+            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d, __i : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;\n    __pidi, __pidp, __pide, __pids : ARRAY[0..{}] OF LREAL;\n    __sti : DINT;",
             MAX_BRANCH * (MAX_CALLS + 1) - 1,
             self.rems.len().max(1) - 1,
             self.pids.len().max(1) - 1
@@ -224,9 +226,41 @@ impl<'a> Emitter<'a> {
         }
         s.push_str("END_VAR\n");
         s.push_str("    __now := TIME_TO_LINT(__SCAN_TIME());\n    IF __slc_started THEN __d := LINT_TO_DINT(__now - __slc_last); ELSE __d := 0; END_IF;\n    __slc_last := __now;\n    (* S:1/15 first pass *)\n    S2[1].15 := NOT __slc_started;\n    __mcr := TRUE;\n    __tnd := FALSE;\n    __slc_trap := 0;\n");
+        s.push_str(&sti);
         s.push_str(&main);
         s.push_str("    __slc_started := TRUE;\n");
         // The overflow trap and END_PROGRAM follow (`super::trap_check`).
+        s
+    }
+
+    /// The Selectable Timed Interrupt, run before program file 2: S:30
+    /// the interval in ms of PLC time, S:31 the file. Each whole interval
+    /// elapsed since the previous scan runs the file once (the remainder
+    /// kept in `__sti`); S:30 <= 0 or S:31 naming no subroutine file
+    /// disables it and drops the time. Generated only when the program
+    /// has S:31 (S2 of at least 32 words) and subroutine files.
+    fn sti(&mut self) -> String {
+        let words = self.layout.files.get(&2).map_or(0, |f| f.elements);
+        let files: Vec<u32> = self.p.files.keys().copied().filter(|&n| n >= 3).collect();
+        if words < 32 || files.is_empty() {
+            return String::new();
+        }
+        let mut s = format!(
+            "    (* STI: S:30 interval (ms), S:31 file *)\n    IF S2[30] > 0 AND (S2[31] = {}) THEN\n    __sti := __sti + __d;\n    WHILE S2[30] > 0 AND __sti >= INT_TO_DINT(S2[30]) DO\n    __sti := __sti - INT_TO_DINT(S2[30]);\n    CASE S2[31] OF\n",
+            files
+                .iter()
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join(" OR S2[31] = ")
+        );
+        for n in files {
+            let code = self.file(n, 1);
+            let _ = write!(
+                s,
+                "    {n}:\n    __mcr := TRUE;\n    __tnd := FALSE;\n{code}"
+            );
+        }
+        s.push_str("    END_CASE;\n    END_WHILE;\n    ELSE\n    __sti := 0;\n    END_IF;\n    __mcr := TRUE;\n    __tnd := FALSE;\n");
         s
     }
 
@@ -666,9 +700,9 @@ impl<'a> Emitter<'a> {
                 let w = |k: u32| format!("{arr}[{}]", b + k);
                 let k = self.pid_slot(a0);
                 format!(
-                    "    __x := __SLC_PID(RUNG := __rc, D := __d, PV := {}, SP := {}, KC := {}, TI := {}, TD := {}, BIAS := {}, OMAX := {}, OMIN := {}, UPD := {}, CTL := {}, W14 := {}, W15 := {}, W16 := {}, W17 := {}, W18 := {}, CV := {}, REM := __rem[{k}], I := __pidi[{}], PREV := __pidp[{}]);\n",
-                    int(&op(1)), w(2), w(3), w(4), w(5), w(6), w(11), w(12), w(13), w(0), w(14), w(15), w(16), w(17), w(18),
-                    place(addr(&op(2))), self.pids_index(a0), self.pids_index(a0)
+                    "    __x := __SLC_PID(RUNG := __rc, D := __d, PVIN := {}, SP := {}, KC := {}, TI := {}, TD := {}, BIAS := {}, SMAX := {}, SMIN := {}, DB := {}, OMAX := {}, OMIN := {}, UPD := {}, CTL := {}, W14 := {}, W15 := {}, W16 := {}, W17 := {}, W18 := {}, CV := {}, REM := __rem[{k}], I := __pidi[{p}], PREV := __pidp[{p}], PREVE := __pide[{p}], LSP := __pids[{p}]);\n",
+                    int(&op(1)), w(2), w(3), w(4), w(5), w(6), w(7), w(8), w(9), w(11), w(12), w(13), w(0), w(14), w(15), w(16), w(17), w(18),
+                    place(addr(&op(2))), p = self.pids_index(a0)
                 )
             }
             "SBR" | "LBL" | "NOP" => String::new(),
@@ -879,7 +913,7 @@ impl<'a> Emitter<'a> {
         self.rem(a)
     }
 
-    /// The integral and last-PV slot of a PID block.
+    /// The state slot of a PID block (`__pidi`, `__pidp`, `__pide`, `__pids`).
     fn pids_index(&mut self, a: Address) -> usize {
         let next = self.pids.len();
         *self.pids.entry((a.file, a.index())).or_insert(next)

@@ -135,6 +135,7 @@ impl<'a> Oop<'a> {
                     return;
                 }
                 let tt = self.type_of(target, cx);
+                self.poly_write_check(target, cx);
                 self.expr(target, cx);
                 if let (T::Itf(i), true) = (&tt, self.is_nothing(value)) {
                     // `itf := NULL;`: no instance (every reference NULL).
@@ -155,8 +156,12 @@ impl<'a> Oop<'a> {
                     return;
                 }
                 self.expr(value, cx);
-                if let T::Itf(i) = tt {
-                    self.wrap_itf(value, i, cx);
+                match tt {
+                    T::Itf(i) => self.wrap_itf(value, i, cx),
+                    T::Ref(TypeSpec::Named(d)) if self.class(d.sym).is_some() => {
+                        self.refuse_base_ref(value, d.sym, cx)
+                    }
+                    _ => {}
                 }
             }
             StmtKind::Expr(e) => self.expr(e, cx),
@@ -264,6 +269,10 @@ impl<'a> Oop<'a> {
 
     /// Wraps `value` (of a class or another interface) into interface `i`.
     pub(super) fn wrap_itf(&mut self, value: &mut Expr, i: Symbol, cx: &Ctx) {
+        if self.poly_class.contains_key(&i) {
+            self.wrap_poly(value, i, false, cx);
+            return;
+        }
         let span = value.span;
         match self.type_of_rewritten(value, cx) {
             Some(T::Class(c)) => {
@@ -522,6 +531,10 @@ impl<'a> Oop<'a> {
             }
             ExprKind::Member { base, member } => {
                 let member = *member;
+                if let Some((i, obj)) = self.poly_view(base, cx) {
+                    self.poly_member(e, i, obj, member, cx);
+                    return;
+                }
                 let bt = self.type_of(base, cx);
                 if let T::Class(c) = bt {
                     if self.class_var(c, member.sym).is_none()
@@ -620,7 +633,7 @@ impl<'a> Oop<'a> {
                 self.expr(v, cx);
             }
         }
-        let (fname, this, params): (Symbol, Option<Expr>, Vec<(Symbol, TypeSpec)>) = match target {
+        let (fname, this, params): (Symbol, Option<Expr>, Vec<Param>) = match target {
             Target2::Plain => {
                 if let ExprKind::Member { base, .. } = &mut callee.kind {
                     self.expr(base, cx);
@@ -721,15 +734,19 @@ impl<'a> Oop<'a> {
                 }
             }
             Target2::Itf(i, mut obj, m) => {
+                let base = self.poly_class.get(&i).copied();
                 let Some(meth) = self.itf_method(i, m.sym) else {
                     let (n, iname) = (self.name(m.sym), self.name(i));
-                    self.err(
-                        Code::E206,
-                        m.span,
-                        format!("interface `{iname}` has no method `{n}`"),
-                    );
+                    let msg = match base {
+                        Some(b) => format!("`{}` has no method `{n}`", self.name(b)),
+                        None => format!("interface `{iname}` has no method `{n}`"),
+                    };
+                    self.err(Code::E206, m.span, msg);
                     return;
                 };
+                if let Some(b) = base {
+                    self.check_access(b, meth.visibility, m, cx);
+                }
                 self.expr(&mut obj, cx);
                 let f = format!("__ID_{}__{}", self.name(i), self.name(m.sym));
                 let osym = self.sym("__o");
@@ -783,6 +800,9 @@ impl<'a> Oop<'a> {
     }
 
     pub(super) fn member_target(&mut self, base: &Expr, member: Ident, cx: &Ctx) -> Target2 {
+        if let Some((i, obj)) = self.poly_view(base, cx) {
+            return Target2::Itf(i, obj, member);
+        }
         match self.type_of(base, cx) {
             T::Class(c) => {
                 if self.class_var(c, member.sym).is_some() {
@@ -790,30 +810,55 @@ impl<'a> Oop<'a> {
                 }
                 Target2::Method(c, base.clone(), member)
             }
+            T::Itf(i) if self.poly_class.contains_key(&i) => {
+                // `r.m()` for `r : REF_TO B`: the reference is not the instance.
+                let n = self.name(member.sym);
+                self.err(
+                    Code::E206,
+                    member.span,
+                    format!("a reference has no method `{n}`: dereference it (`r^.{n}()`)"),
+                );
+                Target2::Plain
+            }
             T::Itf(i) => Target2::Itf(i, base.clone(), member),
             _ => Target2::Plain,
         }
     }
 
     /// Named inputs whose parameter is an interface take class instances.
-    pub(super) fn convert_args(
-        &mut self,
-        args: &mut [Arg],
-        params: &[(Symbol, TypeSpec)],
-        cx: &Ctx,
-    ) {
+    pub(super) fn convert_args(&mut self, args: &mut [Arg], params: &[Param], cx: &Ctx) {
         for (k, a) in args.iter_mut().enumerate() {
             let ty = match &a.name {
                 Some(n) => params
                     .iter()
-                    .find(|(p, _)| *p == n.sym)
-                    .map(|(_, t)| t.clone()),
-                None => params.get(k).map(|(_, t)| t.clone()),
+                    .find(|(p, _, _)| *p == n.sym)
+                    .map(|(_, t, io)| (t.clone(), *io)),
+                None => params.get(k).map(|(_, t, io)| (t.clone(), *io)),
             };
-            if let (Some(TypeSpec::Named(t)), Some(v), ArgDir::In) = (ty, &mut a.value, a.dir) {
-                if self.itfs.contains_key(&t.sym) {
+            let (Some((ty, inout)), Some(v), ArgDir::In) = (ty, &mut a.value, a.dir) else {
+                continue;
+            };
+            match (&ty, inout) {
+                // A VAR_IN_OUT of a base class: an instance of it or of a derived one.
+                (TypeSpec::Named(t), true) => {
+                    if let Some(i) = self.poly.get(&t.sym).copied() {
+                        self.wrap_poly(v, i, true, cx);
+                    }
+                }
+                (TypeSpec::Named(t), false) if self.itfs.contains_key(&t.sym) => {
                     self.wrap_itf(v, t.sym, cx);
                 }
+                (TypeSpec::Ref { target, .. }, false) => match &**target {
+                    TypeSpec::Named(t) if self.poly.contains_key(&t.sym) => {
+                        let i = self.poly.get(&t.sym).copied().unwrap_or(t.sym);
+                        self.wrap_poly(v, i, false, cx);
+                    }
+                    TypeSpec::Named(t) if self.class(t.sym).is_some() => {
+                        self.refuse_base_ref(v, t.sym, cx);
+                    }
+                    _ => {}
+                },
+                _ => {}
             }
         }
     }

@@ -39,10 +39,75 @@ impl<'a> Oop<'a> {
                     self.retype_spec(&mut m.ty, kind);
                 }
             }
-            // A reference may designate an instance of a derived class.
-            TypeSpec::Ref { .. } => {}
+            // A reference to a base class may designate an instance of a
+            // derived class: the base's `<B>^` interface.
+            TypeSpec::Ref { target, .. } => {
+                if let TypeSpec::Named(id) = &**target {
+                    if let Some(i) = self.poly.get(&id.sym) {
+                        let n = format!("__ITF_{}", self.name(*i));
+                        let id = Ident {
+                            sym: self.sym(&n),
+                            span: id.span,
+                        };
+                        *ty = TypeSpec::Named(id);
+                    }
+                }
+            }
             _ => {}
         }
+    }
+
+    /// A `VAR_IN_OUT x : B` of a base class becomes the input `x : REF_TO B`
+    /// (then `<B>^`), in the same place among the parameters; returns
+    /// those names (written as instances in the body).
+    pub(super) fn split_poly_inouts(&self, blocks: &mut Vec<VarBlock>) -> HashSet<Symbol> {
+        let mut names = HashSet::new();
+        let is_poly =
+            |d: &VarDecl| matches!(&d.ty, TypeSpec::Named(id) if self.poly.contains_key(&id.sym));
+        if !blocks
+            .iter()
+            .any(|b| b.kind == VarKind::InOut && b.decls.iter().any(is_poly))
+        {
+            return names;
+        }
+        let mut out = Vec::new();
+        for b in std::mem::take(blocks) {
+            if b.kind != VarKind::InOut || !b.decls.iter().any(is_poly) {
+                out.push(b);
+                continue;
+            }
+            let mut cur: Option<VarBlock> = None;
+            for mut d in b.decls.iter().cloned() {
+                let poly = is_poly(&d);
+                if poly {
+                    names.extend(d.names.iter().map(|n| n.sym));
+                    let span = d.ty.span();
+                    d.ty = TypeSpec::Ref {
+                        target: Box::new(d.ty.clone()),
+                        span,
+                    };
+                }
+                let kind = if poly { VarKind::Input } else { VarKind::InOut };
+                match &mut cur {
+                    Some(c) if c.kind == kind => c.decls.push(d),
+                    _ => {
+                        if let Some(c) = cur.take() {
+                            out.push(c);
+                        }
+                        cur = Some(VarBlock {
+                            kind,
+                            decls: vec![d],
+                            ..b.clone()
+                        });
+                    }
+                }
+            }
+            if let Some(c) = cur {
+                out.push(c);
+            }
+        }
+        *blocks = out;
+        names
     }
 
     pub(super) fn locals_of(blocks: &[VarBlock]) -> HashMap<Symbol, TypeSpec> {
@@ -58,6 +123,7 @@ impl<'a> Oop<'a> {
     }
 
     pub(super) fn rewrite_pou(&mut self, p: &mut Pou) {
+        let byref = self.split_poly_inouts(&mut p.var_blocks);
         let mut locals = Self::locals_of(&p.var_blocks);
         // A function's result is assigned to its name.
         if let (PouKind::Function, Some(r)) = (p.kind, &p.return_type) {
@@ -70,6 +136,7 @@ impl<'a> Oop<'a> {
             locals,
             result: None,
             pou: Some(p.name.sym),
+            byref,
         };
         for b in &mut p.var_blocks {
             self.retype_block(b);

@@ -17,6 +17,7 @@ impl<'a> Oop<'a> {
                 var_blocks.extend(kc.var_blocks.iter().cloned());
             }
         }
+        let byref = self.split_poly_inouts(&mut var_blocks);
         for b in &mut var_blocks {
             self.retype_block(b);
         }
@@ -34,6 +35,7 @@ impl<'a> Oop<'a> {
             locals: members.clone(),
             result: None,
             pou: None,
+            byref,
         };
         self.stmts(&mut body, &cx);
         out.push(Item::Pou(Pou {
@@ -200,7 +202,28 @@ impl<'a> Oop<'a> {
             span: meth.name.span,
         };
         let mut var_blocks = vec![this_block];
-        var_blocks.extend(meth.var_blocks.iter().cloned());
+        let mut own_blocks = meth.var_blocks.clone();
+        let mut byref = self.split_poly_inouts(&mut own_blocks);
+        // The class's VAR_IN_OUT of a base class, reached through `__THIS`.
+        let own_names = Self::locals_of(&own_blocks);
+        for kc in self.chain(c) {
+            for b in self.class(kc).map_or(&[][..], |x| &x.var_blocks[..]) {
+                if b.kind != VarKind::InOut {
+                    continue;
+                }
+                for d in &b.decls {
+                    if matches!(&d.ty, TypeSpec::Named(t) if self.poly.contains_key(&t.sym)) {
+                        byref.extend(
+                            d.names
+                                .iter()
+                                .map(|n| n.sym)
+                                .filter(|n| !own_names.contains_key(n)),
+                        );
+                    }
+                }
+            }
+        }
+        var_blocks.extend(own_blocks.iter().cloned());
         // The class's VAR_EXTERNAL are the method's too (globals by name).
         let mut externals = Vec::new();
         for kc in self.chain(c) {
@@ -213,11 +236,11 @@ impl<'a> Oop<'a> {
                 );
             }
         }
-        let mut locals = Self::locals_of(&meth.var_blocks);
+        let mut locals = Self::locals_of(&own_blocks);
         for (n, t) in Self::locals_of(&externals) {
             locals.entry(n).or_insert(t);
         }
-        let own = Self::locals_of(&meth.var_blocks);
+        let own = Self::locals_of(&own_blocks);
         for b in &mut externals {
             b.decls
                 .retain(|d| d.names.iter().all(|n| !own.contains_key(&n.sym)));
@@ -234,6 +257,7 @@ impl<'a> Oop<'a> {
             locals,
             result: meth.return_type.as_ref().map(|_| (meth.name.sym, fname)),
             pou: None,
+            byref,
         };
         let mut body = meth.body.clone();
         self.stmts(&mut body, &cx);
@@ -530,12 +554,14 @@ impl<'a> Oop<'a> {
                 }],
                 span,
             }];
-            var_blocks.extend(
-                m.var_blocks
-                    .iter()
-                    .filter(|b| b.kind != VarKind::Local && b.kind != VarKind::Temp)
-                    .cloned(),
-            );
+            let mut params: Vec<VarBlock> = m
+                .var_blocks
+                .iter()
+                .filter(|b| b.kind != VarKind::Local && b.kind != VarKind::Temp)
+                .cloned()
+                .collect();
+            self.split_poly_inouts(&mut params);
+            var_blocks.extend(params);
             for b in var_blocks.iter_mut().skip(1) {
                 self.retype_block(b);
             }

@@ -23,6 +23,16 @@
 //!   instance it dereferences a NULL reference: the runtime's fault). An
 //!   assignment of an instance to an interface variable (or as an input)
 //!   calls `__IC_I__<class>(REF(instance))`.
+//! - Base-class polymorphism: every class some other class EXTENDS gets a
+//!   hidden interface `<B>^` (`poly_bases`; its methods are B's, with its
+//!   base's `^` as EXTENDS), implemented by B and every class derived from
+//!   it. A `REF_TO B` becomes that interface's structure, and so does a
+//!   `VAR_IN_OUT x : B` (made an input in the same place); `r^.m()` and
+//!   `x.m()` are interface calls (the override of the instance's class),
+//!   `r^.f` / `x.f` of an input or output is `__BR_<B^>__f(r)^`, a CASE on
+//!   the class number returning the reference to that instance's field.
+//!   `REF(d)` and a reference to a derived class convert (`__IC_`); a
+//!   reference to a base does not go into a reference to a derived class.
 //!
 //! Every misuse is reported here, at the source's names (E200–E213).
 
@@ -30,6 +40,7 @@ mod body;
 mod decls;
 mod interfaces;
 mod items;
+mod poly;
 mod rules;
 mod types;
 
@@ -77,7 +88,10 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
     if classes.is_empty() && itfs.is_empty() {
         return diags;
     }
+    let poly = poly_bases(&classes, &order, &mut itfs, interner);
     let mut d = Oop::new(interner, &classes, &itfs, &order);
+    d.poly_class = poly.iter().map(|(c, i)| (*i, *c)).collect();
+    d.poly = poly;
     d.check_classes();
     d.check_interfaces();
     // Each class gets its own copy of every inherited method: bound the total.
@@ -174,6 +188,13 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
             out.push((*u, d.itf_pointer_fn(a, target, f)));
         }
     }
+    for (i, field) in std::mem::take(&mut d.poly_fields) {
+        if let Some((u, _)) = itfs.get(&i) {
+            if let Some(item) = d.poly_field_fn(i, field) {
+                out.push((*u, item));
+            }
+        }
+    }
     diags.append(&mut d.diags);
     for (u, item) in out {
         if let Some(unit) = units.get_mut(u) {
@@ -191,6 +212,77 @@ const MAX_METHOD_COPIES: usize = 50_000;
 const MAX_COPIED_BYTES: u64 = 64 << 20;
 /// Statements copied into bodies by `SUPER^();`, at most.
 const MAX_INLINED: usize = 100_000;
+
+/// Every class some other class EXTENDS gets a hidden interface `<B>^`
+/// (the reference to it): its methods are the class's own and, through
+/// EXTENDS of its base's `^` interface, the inherited ones; the classes
+/// implementing it are `B` and every class derived from it. A `REF_TO B`
+/// and a `VAR_IN_OUT x : B` become that interface's structure, so a call
+/// through them dispatches on the instance's class number like any
+/// interface call. Returns class -> interface.
+fn poly_bases(
+    classes: &HashMap<Symbol, (usize, Class)>,
+    order: &[Symbol],
+    itfs: &mut HashMap<Symbol, (usize, Interface)>,
+    interner: &mut Interner,
+) -> HashMap<Symbol, Symbol> {
+    let mut bases: Vec<Symbol> = Vec::new();
+    for c in order {
+        let mut cur = *c;
+        let mut seen = vec![cur];
+        while let Some(b) = classes.get(&cur).and_then(|(_, x)| x.extends) {
+            if seen.len() > MAX_INHERITANCE + 1 || seen.contains(&b.sym) {
+                break;
+            }
+            if !classes.contains_key(&b.sym) {
+                break;
+            }
+            if !bases.contains(&b.sym) {
+                bases.push(b.sym);
+            }
+            seen.push(b.sym);
+            cur = b.sym;
+        }
+    }
+    let mut out = HashMap::new();
+    for b in &bases {
+        let n = format!("{}^", interner.name(*b));
+        out.insert(*b, interner.intern(&n));
+    }
+    for b in bases {
+        let (Some((u, cl)), Some(&isym)) = (classes.get(&b), out.get(&b)) else {
+            continue;
+        };
+        let extends = cl
+            .extends
+            .and_then(|e| {
+                out.get(&e.sym).map(|s| Ident {
+                    sym: *s,
+                    span: e.span,
+                })
+            })
+            .into_iter()
+            .collect();
+        itfs.insert(
+            isym,
+            (
+                *u,
+                Interface {
+                    name: Ident {
+                        sym: isym,
+                        span: cl.name.span,
+                    },
+                    extends,
+                    methods: cl.methods.clone(),
+                    properties: Vec::new(),
+                    span: cl.span,
+                    desugared: true,
+                },
+            ),
+        );
+    }
+    out
+}
 
 /// A plain FUNCTION_BLOCK named after `EXTENDS` becomes a class (with no
 /// methods), so that it can be a base.
@@ -233,9 +325,12 @@ fn promote_bases(units: &mut [SourceUnit]) {
     }
 }
 
+/// A parameter as written: name, type, whether it is a VAR_IN_OUT.
+type Param = (Symbol, TypeSpec, bool);
+
 /// Input and in-out parameter types of every plain POU (for interface
 /// conversions of call arguments).
-fn collect_params(units: &[SourceUnit]) -> HashMap<Symbol, Vec<(Symbol, TypeSpec)>> {
+fn collect_params(units: &[SourceUnit]) -> HashMap<Symbol, Vec<Param>> {
     let mut out = HashMap::new();
     for unit in units {
         for item in &unit.items {
@@ -245,7 +340,7 @@ fn collect_params(units: &[SourceUnit]) -> HashMap<Symbol, Vec<(Symbol, TypeSpec
                     if matches!(b.kind, VarKind::Input | VarKind::InOut) {
                         for decl in &b.decls {
                             for n in &decl.names {
-                                v.push((n.sym, decl.ty.clone()));
+                                v.push((n.sym, decl.ty.clone(), b.kind == VarKind::InOut));
                             }
                         }
                     }
@@ -349,6 +444,9 @@ struct Ctx {
     /// In a plain POU's body: its name (INTERNAL members are visible in
     /// the namespace of `pou` or else of `defined_in`).
     pou: Option<Symbol>,
+    /// VAR_IN_OUT of a base class (now references through `<B>^`): written
+    /// as instances (`x.m()`, `x.field`).
+    byref: HashSet<Symbol>,
 }
 
 struct Oop<'a> {
@@ -367,7 +465,15 @@ struct Oop<'a> {
     inlined: usize,
     /// Copies of base implementations needed by SUPER^.m(): (class, base, method).
     supers: Vec<(Symbol, Symbol, Symbol)>,
-    pou_params: HashMap<Symbol, Vec<(Symbol, TypeSpec)>>,
+    pou_params: HashMap<Symbol, Vec<Param>>,
+    /// A class some other class EXTENDS -> its hidden interface `<B>^`.
+    poly: HashMap<Symbol, Symbol>,
+    /// The reverse: `<B>^` -> `B`.
+    poly_class: HashMap<Symbol, Symbol>,
+    /// `__BR_<B^>__<field>` functions asked for by `r^.field`, in the order first met.
+    poly_fields: Vec<(Symbol, Symbol)>,
+    /// `__ITF_<I>` -> `I` (declarations already retyped).
+    itf_structs: HashMap<Symbol, Symbol>,
     /// The result type of every plain FUNCTION, as written.
     returns: HashMap<Symbol, TypeSpec>,
     /// Pairs of interfaces compared by `__IE_<A>__<B>` (values that are not
@@ -401,6 +507,13 @@ impl<'a> Oop<'a> {
             .collect();
         let this = interner.intern("__THIS");
         let self_ = interner.intern("__SELF");
+        let itf_structs = itfs
+            .keys()
+            .map(|i| {
+                let n = format!("__ITF_{}", interner.name(*i));
+                (interner.intern(&n), *i)
+            })
+            .collect();
         Oop {
             interner,
             classes,
@@ -413,6 +526,10 @@ impl<'a> Oop<'a> {
             inlined: 0,
             supers: Vec::new(),
             pou_params: HashMap::new(),
+            poly: HashMap::new(),
+            poly_class: HashMap::new(),
+            poly_fields: Vec::new(),
+            itf_structs,
             returns: HashMap::new(),
             itf_equals: Vec::new(),
             itf_queries: Vec::new(),
@@ -449,7 +566,7 @@ impl<'a> Oop<'a> {
     /// The class and its bases, outermost base last; `None` when the chain
     /// is broken (reported by `check_classes`).
     /// The VAR_INPUT and VAR_IN_OUT of a class and its bases, as written.
-    fn class_inputs(&self, c: Symbol) -> Vec<(Symbol, TypeSpec)> {
+    fn class_inputs(&self, c: Symbol) -> Vec<Param> {
         let mut v = Vec::new();
         for k in self.chain(c).iter().rev() {
             let Some(kc) = self.class(*k) else { continue };
@@ -457,7 +574,7 @@ impl<'a> Oop<'a> {
                 if matches!(b.kind, VarKind::Input | VarKind::InOut) {
                     for decl in &b.decls {
                         for n in &decl.names {
-                            v.push((n.sym, decl.ty.clone()));
+                            v.push((n.sym, decl.ty.clone(), b.kind == VarKind::InOut));
                         }
                     }
                 }
@@ -548,6 +665,9 @@ impl<'a> Oop<'a> {
 
     /// Interfaces class `c` implements (through its bases and interface EXTENDS).
     fn implements(&self, c: Symbol, i: Symbol) -> bool {
+        if let Some(b) = self.poly_class.get(&i) {
+            return self.derives_from(c, *b);
+        }
         self.chain(c).into_iter().any(|k| {
             self.class(k).is_some_and(|cl| {
                 cl.implements
@@ -564,6 +684,12 @@ impl<'a> Oop<'a> {
             .filter(|c| !self.broken.contains(c) && !self.bad_impl.contains(c))
             .filter(|c| self.implements(*c, i))
             .filter(|c| !self.class(*c).is_some_and(|x| x.is_abstract))
+            // A class missing an ABSTRACT method's implementation (E203)
+            // has no copy of it to dispatch to.
+            .filter(|c| {
+                !self.poly_class.contains_key(&i)
+                    || self.all_methods(*c).iter().all(|(_, _, m)| !m.is_abstract)
+            })
             .collect()
     }
 }
@@ -575,13 +701,13 @@ enum Target2 {
     Plain,
 }
 
-fn params_of(m: &Method) -> Vec<(Symbol, TypeSpec)> {
+fn params_of(m: &Method) -> Vec<Param> {
     let mut v = Vec::new();
     for b in &m.var_blocks {
         if matches!(b.kind, VarKind::Input | VarKind::InOut) {
             for decl in &b.decls {
                 for n in &decl.names {
-                    v.push((n.sym, decl.ty.clone()));
+                    v.push((n.sym, decl.ty.clone(), b.kind == VarKind::InOut));
                 }
             }
         }

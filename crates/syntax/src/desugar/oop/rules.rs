@@ -224,6 +224,10 @@ impl<'a> Oop<'a> {
         let mut list: Vec<&Interface> = self.itfs.values().map(|(_, i)| i).collect();
         list.sort_by_key(|i| i.span.start);
         for it in list {
+            // The hidden `<B>^` of a base class: checked as the class.
+            if self.poly_class.contains_key(&it.name.sym) {
+                continue;
+            }
             for e in &it.extends {
                 if self.itf(e.sym).is_none() {
                     let n = self.name(e.sym);

@@ -10,6 +10,9 @@ impl<'a> Oop<'a> {
                     T::Class(id.sym)
                 } else if self.itfs.contains_key(&id.sym) {
                     T::Itf(id.sym)
+                } else if let Some(i) = self.itf_structs.get(&id.sym) {
+                    // A declaration already retyped.
+                    T::Itf(*i)
                 } else if self.pou_vars.contains_key(&id.sym) {
                     T::Pou(id.sym)
                 } else {
@@ -32,8 +35,65 @@ impl<'a> Oop<'a> {
             }
             TypeSpec::Struct { members, .. } => T::Struct(members.clone()),
             TypeSpec::Array { elem, .. } => T::Array((**elem).clone()),
-            TypeSpec::Ref { target, .. } => T::Ref((**target).clone()),
+            TypeSpec::Ref { target, .. } => match &**target {
+                TypeSpec::Named(id) if self.poly.contains_key(&id.sym) => {
+                    T::Itf(self.poly.get(&id.sym).copied().unwrap_or(id.sym))
+                }
+                t => T::Ref(t.clone()),
+            },
             _ => T::Other,
+        }
+    }
+
+    /// A variable of class `c` (or a base): its type as written and its section.
+    pub(super) fn class_var_kind(&self, c: Symbol, n: Symbol) -> Option<(TypeSpec, VarKind)> {
+        for k in self.chain(c) {
+            for b in &self.class(k)?.var_blocks {
+                for decl in &b.decls {
+                    if decl.names.iter().any(|x| x.sym == n) {
+                        return Some((decl.ty.clone(), b.kind));
+                    }
+                }
+            }
+        }
+        None
+    }
+
+    /// An instance reached through a reference to a base class: `r^` for
+    /// `r : REF_TO B`, or a `VAR_IN_OUT x : B`. Returns `B`'s `<B>^`
+    /// interface and the expression holding the reference (`r`, `x`).
+    pub(super) fn poly_view(&self, e: &Expr, cx: &Ctx) -> Option<(Symbol, Expr)> {
+        match &e.kind {
+            ExprKind::Paren(i) => self.poly_view(i, cx),
+            ExprKind::Deref(b) if !self.is_kw(b, "THIS", cx) && !self.is_kw(b, "SUPER", cx) => {
+                match self.type_of(b, cx) {
+                    T::Itf(i) if self.poly_class.contains_key(&i) => Some((i, (**b).clone())),
+                    _ => None,
+                }
+            }
+            ExprKind::Name(id) if cx.byref.contains(&id.sym) => {
+                // Declared `x : B` (a class's member, as written), `REF_TO B`
+                // (a split parameter) or already `__ITF_<B^>`.
+                let ty = cx
+                    .locals
+                    .get(&id.sym)
+                    .cloned()
+                    .or_else(|| cx.class.and_then(|c| self.class_var(c, id.sym)))?;
+                let i = match &ty {
+                    TypeSpec::Named(n) => self
+                        .poly
+                        .get(&n.sym)
+                        .or_else(|| self.itf_structs.get(&n.sym))
+                        .copied()?,
+                    TypeSpec::Ref { target, .. } => match &**target {
+                        TypeSpec::Named(n) => self.poly.get(&n.sym).copied()?,
+                        _ => return None,
+                    },
+                    _ => return None,
+                };
+                self.poly_class.contains_key(&i).then(|| (i, e.clone()))
+            }
+            _ => None,
         }
     }
 

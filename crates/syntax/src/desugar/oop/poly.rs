@@ -1,0 +1,379 @@
+//! Base-class polymorphism: a `REF_TO B` or `VAR_IN_OUT x : B` designating
+//! an instance of `B` or of a class derived from it, through `B`'s hidden
+//! interface `<B>^` (see `poly_bases` in `mod.rs`).
+
+use super::*;
+
+impl<'a> Oop<'a> {
+    /// Wraps `value` into `<B>^` (interface `i`). `view`: the value stands
+    /// for an instance (a VAR_IN_OUT argument); otherwise for a reference
+    /// (`REF(x)`, a reference variable).
+    pub(super) fn wrap_poly(&mut self, value: &mut Expr, i: Symbol, view: bool, cx: &Ctx) {
+        let Some(b) = self.poly_class.get(&i).copied() else {
+            return;
+        };
+        let span = value.span;
+        if !view {
+            // `REF(x)`: the instance `x`.
+            if let ExprKind::Call { callee, args } = &mut value.kind {
+                let is_ref = self.is_word(callee, "REF");
+                if let (true, [a]) = (is_ref, args.as_mut_slice()) {
+                    if let (None, Some(inner)) = (a.name, a.value.take()) {
+                        *value = inner;
+                        self.wrap_poly(value, i, true, cx);
+                        return;
+                    }
+                }
+            }
+            match self.type_of_rewritten(value, cx) {
+                Some(T::Ref(TypeSpec::Named(d))) if self.class(d.sym).is_some() => {
+                    self.poly_from_class(value, i, b, d.sym, false);
+                }
+                Some(T::Itf(j)) if self.poly_class.contains_key(&j) => {
+                    self.poly_from_poly(value, i, b, j);
+                }
+                Some(T::Class(_)) => {
+                    let bn = self.name(b);
+                    self.err(
+                        Code::E212,
+                        span,
+                        format!(
+                            "a `REF_TO {bn}` takes a reference to an instance: `REF(instance)`"
+                        ),
+                    );
+                    value.kind = ExprKind::Error;
+                }
+                Some(T::Ref(TypeSpec::Named(p))) if self.pou_vars.contains_key(&p.sym) => {
+                    self.not_derived(value, p.sym, b);
+                }
+                _ => {}
+            }
+            return;
+        }
+        if let Some((j, obj)) = self.poly_view(value, cx) {
+            let mut obj = obj;
+            self.expr(&mut obj, cx);
+            *value = obj;
+            self.poly_from_poly(value, i, b, j);
+            return;
+        }
+        match self.type_of_rewritten(value, cx) {
+            Some(T::Class(c)) => self.poly_from_class(value, i, b, c, true),
+            Some(T::Pou(p)) => self.not_derived(value, p, b),
+            Some(T::Itf(j)) if self.poly_class.contains_key(&j) => {
+                let bn = self.name(b);
+                self.err(
+                    Code::E212,
+                    span,
+                    format!("a VAR_IN_OUT of type `{bn}` takes an instance: dereference the reference (`r^`)"),
+                );
+                value.kind = ExprKind::Error;
+            }
+            _ => {}
+        }
+    }
+
+    /// An instance (`view`) or a reference of class `c` as `<B>^`.
+    fn poly_from_class(&mut self, value: &mut Expr, i: Symbol, b: Symbol, c: Symbol, view: bool) {
+        let span = value.span;
+        if self.bad_impl.contains(&c) || self.broken.contains(&c) {
+            value.kind = ExprKind::Error;
+            return;
+        }
+        if !self.derives_from(c, b) {
+            self.not_derived(value, c, b);
+            return;
+        }
+        let f = format!("__IC_{}__{}", self.name(i), self.name(c));
+        let f = self.sym(&f);
+        let inner = std::mem::replace(
+            value,
+            Expr {
+                kind: ExprKind::Error,
+                span,
+            },
+        );
+        let arg = if view {
+            call_expr(self.sym("REF"), vec![inner], span)
+        } else {
+            inner
+        };
+        *value = call_expr(f, vec![arg], span);
+    }
+
+    fn not_derived(&mut self, value: &mut Expr, c: Symbol, b: Symbol) {
+        let (cn, bn) = (self.name(c), self.name(b));
+        self.err(
+            Code::E212,
+            value.span,
+            format!("`{cn}` is neither `{bn}` nor derived from it: a reference to `{bn}` cannot designate it"),
+        );
+        value.kind = ExprKind::Error;
+    }
+
+    /// A `<D>^` value as `<B>^`: D is B or derives from it.
+    fn poly_from_poly(&mut self, value: &mut Expr, i: Symbol, b: Symbol, j: Symbol) {
+        if i == j {
+            return;
+        }
+        let span = value.span;
+        if !self.itf_chain(j).contains(&i) {
+            let d = self.poly_class.get(&j).copied().unwrap_or(j);
+            let (dn, bn) = (self.name(d), self.name(b));
+            self.err(
+                Code::E212,
+                span,
+                format!("a reference to `{dn}` cannot be assigned to a reference to `{bn}`: `{dn}` is not derived from `{bn}`"),
+            );
+            value.kind = ExprKind::Error;
+            return;
+        }
+        let f = format!("__IC_{}__{}", self.name(i), self.name(j));
+        let f = self.sym(&f);
+        let inner = std::mem::replace(
+            value,
+            Expr {
+                kind: ExprKind::Error,
+                span,
+            },
+        );
+        *value = call_expr(f, vec![inner], span);
+    }
+
+    /// `rd := rb` or `rd := REF(b)` for `rd : REF_TO D`, where `b`'s class
+    /// is a base of `D`: refused (a base instance is not a `D`).
+    pub(super) fn refuse_base_ref(&mut self, value: &mut Expr, d: Symbol, cx: &Ctx) {
+        let from = match self.type_of_rewritten(value, cx) {
+            Some(T::Itf(j)) => self.poly_class.get(&j).copied(),
+            _ => None,
+        };
+        let from = from.or_else(|| match &value.kind {
+            ExprKind::Call { callee, args } if self.is_word(callee, "REF") => {
+                match args.first().and_then(|a| a.value.as_ref()) {
+                    Some(v) => match self.type_of_rewritten(v, cx) {
+                        Some(T::Class(c)) => Some(c),
+                        _ => self
+                            .poly_view(v, cx)
+                            .and_then(|(j, _)| self.poly_class.get(&j).copied()),
+                    },
+                    None => None,
+                }
+            }
+            _ => None,
+        });
+        if let Some(c) = from {
+            if c != d {
+                let (cn, dn) = (self.name(c), self.name(d));
+                self.err(
+                    Code::E212,
+                    value.span,
+                    format!("a `REF_TO {dn}` cannot designate a `{cn}`: only `{dn}` or a class derived from it"),
+                );
+                value.kind = ExprKind::Error;
+            }
+        }
+    }
+
+    /// `r^.field` / `x.field` through a reference to base `B`: the field of
+    /// the designated instance, `__BR_<B^>__<field>(r)^`. Only the inputs
+    /// and outputs are visible, as for any instance from outside.
+    pub(super) fn poly_member(
+        &mut self,
+        e: &mut Expr,
+        i: Symbol,
+        obj: Expr,
+        member: Ident,
+        cx: &Ctx,
+    ) {
+        let Some(b) = self.poly_class.get(&i).copied() else {
+            return;
+        };
+        let span = e.span;
+        let (bn, n) = (self.name(b), self.name(member.sym));
+        match self.class_var_kind(b, member.sym) {
+            Some((_, VarKind::Input | VarKind::Output)) => {}
+            Some(_) => {
+                self.err(
+                    Code::E024,
+                    member.span,
+                    format!("`{n}` is not an input or output of `{bn}` (through a reference only those are visible)"),
+                );
+                return;
+            }
+            None if self.property_of(b, member.sym).is_some() => {
+                self.err(
+                    Code::E210,
+                    member.span,
+                    format!("the property `{n}` cannot be reached through a reference to `{bn}` yet: use a method"),
+                );
+                return;
+            }
+            None => {
+                self.err(
+                    Code::E024,
+                    member.span,
+                    format!("`{bn}` has no variable `{n}`"),
+                );
+                return;
+            }
+        }
+        let mut obj = obj;
+        self.expr(&mut obj, cx);
+        if !self.poly_fields.contains(&(i, member.sym)) {
+            self.poly_fields.push((i, member.sym));
+        }
+        let f = self.field_fn_name(i, member.sym);
+        e.kind = ExprKind::Deref(Box::new(call_expr(f, vec![obj], span)));
+    }
+
+    /// Writing an output through a reference to a base class is refused as
+    /// for any instance (E042).
+    pub(super) fn poly_write_check(&mut self, target: &Expr, cx: &Ctx) {
+        let ExprKind::Member { base, member } = &target.kind else {
+            return;
+        };
+        let Some((i, _)) = self.poly_view(base, cx) else {
+            return;
+        };
+        let Some(b) = self.poly_class.get(&i).copied() else {
+            return;
+        };
+        if let Some((_, VarKind::Output)) = self.class_var_kind(b, member.sym) {
+            let (bn, n) = (self.name(b), self.name(member.sym));
+            self.err(
+                Code::E042,
+                member.span,
+                format!("the output `{n}` of `{bn}` cannot be written from outside"),
+            );
+        }
+    }
+
+    fn field_fn_name(&mut self, i: Symbol, field: Symbol) -> Symbol {
+        let n = format!("__BR_{}__{}", self.name(i), self.name(field));
+        self.sym(&n)
+    }
+
+    /// `FUNCTION __BR_<B^>__<f> : REF_TO <type of f>` over `__o : __ITF_<B^>`:
+    /// a CASE on the class number; without an instance it dereferences
+    /// the first class's NULL reference (the runtime's fault).
+    pub(super) fn poly_field_fn(&mut self, i: Symbol, field: Symbol) -> Option<Item> {
+        let b = self.poly_class.get(&i).copied()?;
+        let (mut ty, _) = self.class_var_kind(b, field)?;
+        self.retype_spec(&mut ty, VarKind::Local);
+        let span = self.itf(i).map_or(Span::default(), |x| x.name.span);
+        let fsym = self.field_fn_name(i, field);
+        let osym = self.sym("__o");
+        let id_sym = self.sym("__id");
+        let ssym = {
+            let n = format!("__ITF_{}", self.name(i));
+            self.sym(&n)
+        };
+        let rsym = self.sym("REF");
+        let id = |s: Symbol| Ident { sym: s, span };
+        let name_e = |s: Symbol| Expr {
+            kind: ExprKind::Name(id(s)),
+            span,
+        };
+        let member_e = |b: Expr, m: Symbol| Expr {
+            kind: ExprKind::Member {
+                base: Box::new(b),
+                member: id(m),
+            },
+            span,
+        };
+        let mut arms = Vec::new();
+        let mut first = None;
+        for c in self.implementors(i) {
+            let k = self.ids.get(&c).copied().unwrap_or(0);
+            let r = format!("__r{k}");
+            let r = self.sym(&r);
+            let place = member_e(
+                Expr {
+                    kind: ExprKind::Deref(Box::new(member_e(name_e(osym), r))),
+                    span,
+                },
+                field,
+            );
+            let stmt = Stmt {
+                kind: StmtKind::Assign {
+                    target: name_e(fsym),
+                    value: call_expr(rsym, vec![place], span),
+                },
+                span,
+            };
+            if first.is_none() {
+                first = Some(stmt.clone());
+            }
+            arms.push(CaseArm {
+                labels: vec![CaseLabel::Value(Expr {
+                    kind: ExprKind::Literal(Box::new(Literal {
+                        kind: LitKind::Int(i128::from(k)),
+                        ty: None,
+                    })),
+                    span,
+                })],
+                body: vec![stmt],
+                span,
+            });
+        }
+        let body = if arms.is_empty() {
+            Vec::new()
+        } else {
+            vec![Stmt {
+                kind: StmtKind::Case {
+                    selector: member_e(name_e(osym), id_sym),
+                    arms,
+                    else_body: first.map(|s| vec![s]),
+                },
+                span,
+            }]
+        };
+        Some(Item::Pou(Pou {
+            kind: PouKind::Function,
+            name: id(fsym),
+            return_type: Some(TypeSpec::Ref {
+                target: Box::new(ty),
+                span,
+            }),
+            var_blocks: vec![VarBlock {
+                kind: VarKind::Input,
+                constant: false,
+                retain: Default::default(),
+                decls: vec![VarDecl {
+                    names: vec![id(osym)],
+                    location: None,
+                    ty: TypeSpec::Named(id(ssym)),
+                    edge: None,
+                    init: None,
+                    span,
+                }],
+                span,
+            }],
+            body: Body::St(body),
+            lang: Lang::St,
+            span,
+        }))
+    }
+}
+
+/// `f(a, b, …)` with positional arguments.
+pub(super) fn call_expr(f: Symbol, args: Vec<Expr>, span: Span) -> Expr {
+    Expr {
+        kind: ExprKind::Call {
+            callee: Box::new(Expr {
+                kind: ExprKind::Name(Ident { sym: f, span }),
+                span,
+            }),
+            args: args
+                .into_iter()
+                .map(|v| Arg {
+                    name: None,
+                    dir: ArgDir::In,
+                    value: Some(v),
+                    span,
+                })
+                .collect(),
+        },
+        span,
+    }
+}
