@@ -186,7 +186,27 @@ impl Layout {
             } else {
                 "INT"
             };
-            let _ = writeln!(s, "    {} AT {at} : {ty};", sym.name);
+            // The alias is declared after its file, so it must carry the
+            // word's initial value or its own default would overwrite it.
+            let init = self
+                .files
+                .get(&sym.addr.file)
+                .and_then(|f| f.init.get(&sym.addr.index()))
+                .map(|v| match (v, sym.addr.part) {
+                    (Operand::Int(v), Part::Bit(_, b)) => {
+                        let set = (v >> b) & 1 == 1;
+                        format!(" := {}", if set { "TRUE" } else { "FALSE" })
+                    }
+                    (Operand::Int(v), _) if sym.addr.ty == FileType::F => format!(" := {v}.0"),
+                    (Operand::Int(v), _) if *v > 32767 => format!(" := {}", v - 65536),
+                    (Operand::Int(v), _) => format!(" := {v}"),
+                    (Operand::Real(v), _) if sym.addr.ty == FileType::F => {
+                        format!(" := {}", real(*v))
+                    }
+                    _ => String::new(),
+                })
+                .unwrap_or_default();
+            let _ = writeln!(s, "    {} AT {at} : {ty}{init};", sym.name);
         }
         s.push_str("    __slc_started : BOOL;\n    __slc_last : LINT;\n    __slc_fault : __SLC_MAJOR_FAULT;\nEND_VAR\n\n");
         s
