@@ -497,6 +497,7 @@ mod tests {
                 offset,
                 bit: None,
                 ty: PlaceType::Elementary(Elementary::Bool),
+                slc_bit: false,
             },
         }
     }

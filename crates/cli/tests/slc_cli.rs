@@ -38,7 +38,7 @@ fn addresses_and_symbols_print_by_name() {
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     assert_eq!(
         text(&out.stdout),
-        "B3/1 = TRUE\nX1 = TRUE\nT4:0.PRE = 300\nS:1/15 = FALSE\nB3:0/1 = TRUE\nI:1/1 = FALSE\n"
+        "B3/1 = 1\nX1 = 1\nT4:0.PRE = 300\nS:1/15 = 0\nB3:0/1 = 1\nI:1/1 = 0\n"
     );
     // An address no file of the program holds, and one that is no address.
     let out = automat(&["run", crane, "--cycles", "1", "--print", "N7:0"]);
@@ -91,6 +91,44 @@ fn an_unhandled_overflow_is_a_major_fault() {
         "{err}"
     );
     assert!(err.contains("PLC time T#0s"), "{err}");
+}
+
+/// SLC bits (by address or symbol) print as 1/0 in a trace too; a
+/// scenario compares and sets them with 1 and 0 (TRUE/FALSE still work),
+/// and its failure shows them as 1/0.
+#[test]
+fn slc_bits_print_as_one_and_zero() {
+    let crane = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/crane-slc/crane.slc"
+    );
+    let csv = std::env::temp_dir().join(format!("automat-slc-trace-{}.csv", std::process::id()));
+    let shown = csv.display().to_string();
+    let out = automat(&[
+        "run",
+        crane,
+        "--cycles",
+        "2",
+        "--trace",
+        "B3:0/1,X1,T4:0.ACC",
+        "--trace-file",
+        &shown,
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let got = std::fs::read_to_string(&csv).unwrap_or_default();
+    let _ = std::fs::remove_file(&csv);
+    assert_eq!(got, "time,B3:0/1,X1,T4:0.ACC\nT#0s,1,1,0\nT#10ms,1,1,0\n");
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/crane-slc");
+    let scn = tmp(
+        "ones.scn",
+        "duration 2s\nat 500ms set B3:0/12 = 1\nat 600ms set B3:0/12 = FALSE\nexpect at 100ms B3:0/1 = 1 AND X1 = 1 AND I:1/1 = 0\nexpect at 550ms B3:0/12 = 1\nexpect at 650ms B3:0/12 = 0\nexpect at 1s B3:0/1 = 0\n",
+    );
+    let shown = scn.display().to_string();
+    let out = automat(&["run", dir, "--scenario", &shown]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    let err = text(&out.stderr);
+    assert!(err.contains("B3:0/1 = 1"), "{err}");
+    assert!(!err.contains("TRUE"), "{err}");
 }
 
 /// A scenario names the SLC addresses (`B3:0/2`, `T4:0/DN`, `T4:0.ACC`,

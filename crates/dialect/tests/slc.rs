@@ -3,10 +3,10 @@
 //! lines at the top say what must hold:
 //! - `; period: MS` the scan period (10 ms by default; scan N runs at PLC
 //!   time (N - 1) x period from 0);
-//! - `; set N: ADDRESS = VALUE` written before scan N (TRUE/FALSE for a
-//!   bit, an integer for a word), kept until set again;
+//! - `; set N: ADDRESS = VALUE` written before scan N (1/0 or TRUE/FALSE
+//!   for a bit, an integer for a word), kept until set again;
 //! - `; expect N: ADDRESS = VALUE` read after scan N, exact (bits print
-//!   TRUE/FALSE);
+//!   1/0, as `--print` shows them);
 //! - `; fault N: TEXT` scan N stops with a runtime fault whose message
 //!   contains TEXT;
 //! - `; error LINE: CODE` the file must give exactly these diagnostics.

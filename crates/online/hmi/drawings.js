@@ -61,7 +61,8 @@
         marks.push((values) => {
           const v = values.get(p);
           t.textContent = v === undefined ? '' : shown(v);
-          t.classList.toggle('on', v === 'TRUE');
+          // An SLC bit reads as 1/0 from the API, an IEC BOOL as TRUE/FALSE.
+          t.classList.toggle('on', v === 'TRUE' || (d.dialect === 'slc' && v === '1'));
         });
       }
       for (const pin of e.pins || []) {

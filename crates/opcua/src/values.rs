@@ -151,7 +151,12 @@ mod tests {
         img[8..16].copy_from_slice(&1_500_000_000i64.to_le_bytes());
         img[16..18].copy_from_slice(&2u16.to_le_bytes());
         img[18..20].copy_from_slice(b"ok");
-        let p = |offset, bit, ty| Place { offset, bit, ty };
+        let p = |offset, bit, ty| Place {
+            offset,
+            bit,
+            ty,
+            slc_bit: false,
+        };
         assert_eq!(
             read(&img, &p(0, Some(2), el(E::Bool))),
             Variant::Boolean(true)

@@ -117,6 +117,7 @@ mod tests {
             offset,
             bit,
             ty: PlaceType::Elementary(e),
+            slc_bit: false,
         }
     }
 

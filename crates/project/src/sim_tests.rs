@@ -13,6 +13,7 @@ fn crane_sim() -> Sim {
                 offset: (i / 8) as u32,
                 bit: Some((i % 8) as u8),
                 ty: PlaceType::Elementary(E::Bool),
+                slc_bit: false,
             },
         })
         .collect();

@@ -89,6 +89,7 @@ fn flag(ty: &SymbolType, base: u32) -> Option<Place> {
         offset: base.checked_add(x.offset)?,
         bit: x.bit,
         ty: PlaceType::Elementary(Elementary::Bool),
+        slc_bit: false,
     })
 }
 

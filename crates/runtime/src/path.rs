@@ -50,6 +50,9 @@ pub struct Place {
     /// A BOOL packed in one bit of the byte at `offset`.
     pub bit: Option<u8>,
     pub ty: PlaceType,
+    /// A bit of an SLC-500 data file (named by its address or a symbol of
+    /// the ladder's table): printed as 1/0, as RSLogix shows bits.
+    pub slc_bit: bool,
 }
 
 impl PlaceType {
@@ -114,6 +117,8 @@ pub fn resolve_access(program: &Program, text: &str) -> Result<Access, String> {
         let sels = parse(t)?;
         walk_path(program, t, &sels)?
     };
+    let mut access = access;
+    access.place.slc_bit = is_slc_bit(program, t, &access.place);
     let place = &access.place;
     let end = u64::from(place.offset) + u64::from(place.ty.size());
     if end > u64::from(program.image_size) {
@@ -123,6 +128,39 @@ pub fn resolve_access(program: &Program, text: &str) -> Result<Access, String> {
         ));
     }
     Ok(access)
+}
+
+/// Is `place` a bit of an SLC-500 data file: named by its SLC address
+/// (`B3:0/1`), or a BOOL (a symbol of the ladder's table, `%IX16.1`) lying
+/// in one of the data-file arrays of a program the SLC front end generated
+/// (its global `__slc_started`)? IEC BOOLs elsewhere are not.
+fn is_slc_bit(program: &Program, text: &str, place: &Place) -> bool {
+    if place.bit.is_none() || place.ty != PlaceType::Elementary(Elementary::Bool) {
+        return false;
+    }
+    if automat_base::slc::looks_like(text) {
+        return true;
+    }
+    if program.symbols.get("__SLC_STARTED").is_none() {
+        return false;
+    }
+    program.symbols.entries().iter().any(|e| {
+        let file = e.path.len() > 1
+            && e.path.starts_with(['O', 'I', 'S', 'B', 'T', 'C', 'R', 'N'])
+            && e.path[1..].bytes().all(|b| b.is_ascii_digit());
+        match &e.ty {
+            SymbolType::Array { dims, stride, .. } if file => {
+                let count = dims
+                    .iter()
+                    .map(|(lo, hi)| hi.saturating_sub(*lo).saturating_add(1).max(0))
+                    .product::<i64>();
+                let size = u64::try_from(count).unwrap_or(0) * u64::from(*stride);
+                let at = u64::from(place.offset);
+                at >= u64::from(e.offset) && at < u64::from(e.offset) + size
+            }
+            _ => false,
+        }
+    })
 }
 
 fn parse(text: &str) -> Result<Vec<Sel>, String> {
@@ -422,6 +460,7 @@ impl Walker {
                 offset: self.offset,
                 bit: self.bit,
                 ty,
+                slc_bit: false,
             },
             constant: self.constant,
             generated: self.generated,
@@ -496,6 +535,7 @@ fn direct(program: &Program, text: &str, addr: &str) -> Result<Place, String> {
         offset: area.start.saturating_add(byte),
         bit,
         ty: PlaceType::Elementary(ty),
+        slc_bit: false,
     };
     let end = u64::from(area.start) + u64::from(byte) + u64::from(place.ty.size());
     if end > u64::from(area.end) {

@@ -97,6 +97,7 @@ fn at(offset: u32, bit: Option<u8>, e: E) -> Place {
         offset,
         bit,
         ty: PlaceType::Elementary(e),
+        slc_bit: false,
     }
 }
 
@@ -125,7 +126,8 @@ fn names_members_indexes_and_bits() {
         Ok(Place {
             offset: 66,
             bit: None,
-            ty: PlaceType::String { cap: 10 }
+            ty: PlaceType::String { cap: 10 },
+            slc_bit: false
         })
     );
     assert!(matches!(

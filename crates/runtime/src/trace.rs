@@ -35,7 +35,9 @@ impl Column {
             Column::Flags(flags) => {
                 let on: Vec<&str> = flags
                     .iter()
-                    .filter(|(_, p)| value::format(image, p) == "TRUE")
+                    .filter(|(_, p)| {
+                        matches!(value::read(image, p), Some(automat_iec::Value::Bool(true)))
+                    })
                     .map(|(n, _)| n.as_str())
                     .collect();
                 if on.is_empty() {
@@ -112,6 +114,7 @@ mod tests {
             offset,
             bit: None,
             ty: PlaceType::Elementary(E::Bool),
+            slc_bit: false,
         };
         let col = Column::Flags(vec![("S1".into(), flag(0)), ("S2".into(), flag(1))]);
         assert_eq!(col.cell(&[0, 0]), "-");
@@ -134,6 +137,7 @@ mod tests {
                     offset: 0,
                     bit: None,
                     ty: PlaceType::Elementary(E::Int),
+                    slc_bit: false,
                 },
             ),
             (
@@ -142,6 +146,7 @@ mod tests {
                     offset: 2,
                     bit: None,
                     ty: PlaceType::String { cap: 4 },
+                    slc_bit: false,
                 },
             ),
             (
@@ -150,6 +155,7 @@ mod tests {
                     offset: 8,
                     bit: Some(1),
                     ty: PlaceType::Elementary(E::Bool),
+                    slc_bit: false,
                 },
             ),
         ];

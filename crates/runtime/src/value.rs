@@ -115,6 +115,9 @@ pub fn format(image: &[u8], place: &Place) -> String {
     let Some(v) = read(image, place) else {
         return "?".to_string();
     };
+    if let (true, Value::Bool(b)) = (place.slc_bit, &v) {
+        return if *b { "1" } else { "0" }.to_string();
+    }
     if let (PlaceType::Enum { name, values, .. }, Value::Int(n, _)) = (&place.ty, &v) {
         if let Some((vn, _)) = values.iter().find(|(_, x)| i128::from(*x) == *n) {
             return format!("{name}#{vn}");
@@ -128,7 +131,12 @@ mod tests {
     use super::*;
 
     fn place(offset: u32, bit: Option<u8>, ty: PlaceType) -> Place {
-        Place { offset, bit, ty }
+        Place {
+            offset,
+            bit,
+            ty,
+            slc_bit: false,
+        }
     }
 
     #[test]

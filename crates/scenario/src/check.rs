@@ -348,6 +348,9 @@ impl Scope<'_> {
                 let (ca, ta, sa) = self.typed(a, refs, ctx)?;
                 let (cb, tb, sb) = self.typed(b, refs, ctx)?;
                 let span = sa.to(sb);
+                // A bit of an SLC-500 data file compares with 1 and 0 too.
+                let (ca, ta) = slc_bit_number(a, ca, ta, &cb, &tb, refs);
+                let (cb, tb) = slc_bit_number(b, cb, tb, &ca, &ta, refs);
                 let (ca, cb) = match (&ta, &tb) {
                     (Some(Ty::Enum(..)), None) => (ca, enum_value(b, ta.as_ref(), sb)?),
                     (None, Some(Ty::Enum(..))) => (enum_value(a, tb.as_ref(), sa)?, cb),
@@ -643,6 +646,11 @@ impl Scope<'_> {
                     let Src::Place(place) = r.src else {
                         return Err(mismatch(n.span, format!("`{}` cannot be set", n.text)));
                     };
+                    // An SLC-500 bit is set to 1 or 0 as well.
+                    let lit = match lit {
+                        Lit::Int(v @ (0 | 1)) if place.slc_bit => &Lit::Bool(*v == 1),
+                        _ => lit,
+                    };
                     let value = self.lit_value(lit, &r.ty, *span, &format!("`{}`", n.text))?;
                     vec![(t, Action::Write { place, value })]
                 }
@@ -683,6 +691,27 @@ impl Scope<'_> {
                 },
             )],
         })
+    }
+}
+
+/// `e` (typed `c`, `t`) as a BOOL when it is the literal 1 or 0 compared
+/// with a bit of an SLC-500 data file (`other`, typed `other_ty`), which
+/// prints as 1/0.
+fn slc_bit_number(
+    e: &Expr,
+    c: Cond,
+    t: Option<Ty>,
+    other: &Cond,
+    other_ty: &Option<Ty>,
+    refs: &[Ref],
+) -> (Cond, Option<Ty>) {
+    let slc = matches!(other, Cond::Ref(i)
+        if matches!(refs.get(*i).map(|r| &r.src), Some(Src::Place(p)) if p.slc_bit));
+    match e {
+        Expr::Lit(Lit::Int(v @ (0 | 1)), _) if slc && *other_ty == Some(Ty::Bool) => {
+            (Cond::Bool(*v == 1), Some(Ty::Bool))
+        }
+        _ => (c, t),
     }
 }
 

@@ -174,6 +174,7 @@ mod tests {
             offset: 2,
             bit,
             ty: PlaceType::Elementary(e),
+            slc_bit: false,
         }
     }
 
@@ -216,6 +217,7 @@ mod tests {
             offset: 0,
             bit: None,
             ty: PlaceType::String { cap: 4 },
+            slc_bit: false,
         };
         assert_eq!(bytes(&s, "'ab'"), vec![2, 0, b'a', b'b']);
         let e = encode(&s, "'abcde'", None).unwrap_err();
@@ -242,6 +244,7 @@ mod tests {
                 base: E::Int,
                 values: vec![("RED".into(), 0), ("GREEN".into(), 1)],
             },
+            slc_bit: false,
         };
         let want = Ok(Stored::Bytes {
             offset: 0,

@@ -300,6 +300,12 @@ fn slc_rungs_are_drawn_as_ladder() {
     assert!(s.contains("Pornire I:1/1"));
     assert!(s.contains("T4:0/DN"));
     assert!(s.contains("rung 6: R5: step 5 action"));
+    // The symbol table's descriptions above their operands (the symbol
+    // and address are the element's text), shortened to fit the column:
+    // 15 rung comments, 13 notes.
+    assert!(s.contains(">cycle start push-button</text>"), "{s}");
+    assert!(s.contains(">one scan on each press ...</text>"), "{s}");
+    assert_eq!(count(&s, "text-comment"), 28);
     // By the file's name too.
     assert_eq!(
         svg::diagram(&draw("examples/crane-slc/crane.slc", "main")),
@@ -325,6 +331,7 @@ fn live_drawings_of_the_slc_ladder() {
     assert_eq!(names, [("LAD 2 MAIN", "LD", Some("SLC"))]);
     let lad = &ds[0];
     assert!(lad.svg.starts_with("<svg ") && lad.svg.contains("class=\"contact\""));
+    assert!(lad.svg.contains(">cycle start push-button</text>"));
     let shown = |text: &str| {
         lad.elements
             .iter()

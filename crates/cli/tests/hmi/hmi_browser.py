@@ -430,7 +430,7 @@ def slc_ladder(d, base, token):
     api.step(3)
     power = api.read("SLC" + x1["power"])["SLC" + x1["power"]]
     bit = api.read("B3:0/1")["B3:0/1"]
-    check("slc: step 1 active at rest (X1 TRUE), its contact powered", (bit, power) == ("TRUE", "TRUE"), (bit, power))
+    check("slc: step 1 active at rest (X1 = 1: SLC bits read as 1/0), its contact powered", (bit, power) == ("1", "TRUE"), (bit, power))
     d.get(base + "/?token=" + token + "#drawings")
     frame = lambda: d.execute_script(
         f"const r = document.querySelector('#drawing-area .live rect.power[data-id=\"{x1['id']}\"]');"

@@ -471,7 +471,14 @@ def slc(base, token):
     eng.step(3)
     v = eng.read("SLC.__ld_n7", "I:1/1", "T4:0.ACC", "B3:0/1")
     check("slc drawings: the paths read",
-          set(v) == {"SLC.__ld_n7", "I:1/1", "T4:0.ACC", "B3:0/1"} and v["B3:0/1"] in ("TRUE", "FALSE"), v)
+          set(v) == {"SLC.__ld_n7", "I:1/1", "T4:0.ACC", "B3:0/1"}, v)
+    check("slc values: data-file bits and symbols read as 1/0, IEC BOOLs as TRUE/FALSE",
+          (v.get("B3:0/1"), v.get("I:1/1"), eng.read("X1").get("X1"), v.get("SLC.__ld_n7")) == ("1", "0", "1", "FALSE"), v)
+    r = eng.post("/api/v1/write", {"path": "B3:0/12", "value": 1})
+    check("slc write: a bit takes 1", r.status_code == 200, f"{r.status_code} {r.text[:200]}")
+    check("slc write: read back 1", eng.read("B3:0/12") == {"B3:0/12": "1"}, eng.read("B3:0/12"))
+    r = eng.post("/api/v1/write", {"path": "B3:0/12", "value": "0"})
+    check("slc write: a bit takes \"0\"", r.status_code == 200 and eng.read("B3:0/12") == {"B3:0/12": "0"}, r.text[:200])
     check("slc drawings: marked as SLC (the HMI shows bits as 1/0)", ds[0].get("dialect") == "slc" if ds else False)
 
 

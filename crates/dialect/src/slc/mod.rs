@@ -278,9 +278,59 @@ mod tests {
         assert!(st.is_some_and(|s| s.contains("__SLC_TON(RUNG := __rc")));
     }
 
+    /// A timer inside a branch has the power frame of the coil taking its
+    /// leg's power (`__ld_n4`); one on a plain rung none of its own.
+    #[test]
+    fn a_block_in_a_branch_has_a_power_frame() {
+        let mut map = SourceMap::new();
+        map.add(
+            "t.slc",
+            "BST XIC I:1/1 TON T4:1 0.01 5 0 NXB XIC I:1/2 BND OTU B3:0/3\nTON T4:2 0.01 5 0\n",
+        );
+        let sheets = live_sheets(&map);
+        let power = |text: &str| -> Option<Option<String>> {
+            let s = sheets.first()?;
+            let node = s.sheet.nodes.iter().find(|n| n.text == text)?;
+            s.live
+                .iter()
+                .find(|l| l.node == node.id)
+                .map(|l| l.power.clone())
+        };
+        assert_eq!(power("TON T4:1 0.01 5 0"), Some(Some("__ld_n4".into())));
+        assert_eq!(power("TON T4:2 0.01 5 0"), Some(None));
+    }
+
+    /// The drawing's notes: above a contact its operand's description,
+    /// above a box each described operand's symbol and description.
+    #[test]
+    fn descriptions_are_noted_above_their_operands() {
+        let mut map = SourceMap::new();
+        map.add(
+            "t.slc",
+            "SYM T4:0 Dwell \"the dwell\"\nSYM B3/0 Go \"go\"\nXIC Go TON Dwell 0.01 300 0\n",
+        );
+        let texts: Vec<(automat_plcopen::sheet::NodeKind, String)> = sheet(&map, "2")
+            .map(|s| s.nodes.into_iter().map(|n| (n.kind, n.text)).collect())
+            .unwrap_or_default();
+        use automat_plcopen::sheet::NodeKind::*;
+        assert_eq!(
+            texts,
+            [
+                (Comment, "rung 0".to_string()),
+                (LeftRail, String::new()),
+                (Comment, "go".into()),
+                (Contact, "Go B3:0/0".into()),
+                (Comment, "Dwell: the dwell".into()),
+                (Block, "TON Dwell T4:0 0.01 300 0".into()),
+            ]
+        );
+    }
+
     /// Contacts, coils and branches go through the graphical model: the
     /// power flow in `__ld_n<id>` BOOLs, ids unique across the segments a
-    /// timer cuts the rung into; a timer inside a branch keeps the rung ST.
+    /// timer cuts the rung into; a timer inside a branch is a coil on its
+    /// power (`__ld_n15`, its frame), its ST on that power, and a contact
+    /// on the condition after it (`__bout0`).
     #[test]
     fn rungs_lower_through_the_graphical_model() {
         let mut map = SourceMap::new();
@@ -310,7 +360,17 @@ mod tests {
             "    __rc := __ld_n11;",
             "    (* LAD 2 rung 1 *)",
             "    __rc := __mcr;",
-            "    __bs[1] := __rc; __bo[1] := FALSE;",
+            "    __ld_n13 := TRUE AND (__rc);",
+            "    __ld_n14 := __ld_n13 AND (I1[8].1);",
+            "    __ld_n15 := __ld_n14;",
+            "    __bin0 := __ld_n15;",
+            "    __rc := __bin0;",
+            "    __x := __SLC_TON(RUNG := __rc, BASE := 10, D := __d, CTL := T4[3], PRE := T4[4], ACC := T4[5], REM := __rem[1]);",
+            "    __bout0 := __rc;",
+            "    __ld_n16 := __ld_n15 AND (__bout0);",
+            "    __ld_n17 := __ld_n13 AND (I1[8].2);",
+            "    __ld_n18 := (__ld_n16 OR __ld_n17);",
+            "    IF __ld_n18 THEN B3[0].3 := FALSE; END_IF;",
         ]
         .join("\n");
         assert!(st.contains(&rung0), "{st}");

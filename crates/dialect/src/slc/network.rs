@@ -12,9 +12,12 @@
 //! instructions work on the SLC's own words (T4:n's EN/TT/DN bits and ACC,
 //! the OSR storage bit, the math status S:0 and S:5/0) in place, as
 //! RSLogix shows them; IEC blocks with instances would keep a second copy
-//! of that state. A rung with such an instruction inside a branch stays
-//! all ST (`emit.rs`'s `__bs`/`__bo` branch slots): cutting there would cut
-//! the wired OR.
+//! of that state. Inside a branch, cutting would cut the wired OR: there
+//! the instruction is a coil on a hidden `__bin<k>` (the power into it),
+//! its ST inserted after the line the lowering gives that coil, and a
+//! contact on `__bout<k>` (the condition after it). A rung with JSR, JMP,
+//! RET, TND or MCR inside a branch stays all ST (`emit.rs`'s `__bs`/`__bo`
+//! branch slots).
 
 use super::emit::Emitter;
 use super::parse::{Elem, Ins, Rung};
@@ -26,7 +29,14 @@ fn in_model(mn: &str) -> bool {
     matches!(mn, "XIC" | "XIO" | "OTE" | "OTL" | "OTU")
 }
 
-/// Can the rung go through the model (no ST instruction inside a branch)?
+/// Instructions that change where scanning goes: inside a branch they keep
+/// the rung ST.
+fn steers(mn: &str) -> bool {
+    matches!(mn, "JSR" | "JMP" | "LBL" | "RET" | "TND" | "MCR" | "SBR")
+}
+
+/// Can the rung go through the model (no JSR, JMP, RET, TND or MCR inside
+/// a branch)?
 pub fn fits(rung: &Rung) -> bool {
     let mut depth = 0usize;
     for e in &rung.elems {
@@ -34,7 +44,7 @@ pub fn fits(rung: &Rung) -> bool {
             Elem::Bst(_) => depth += 1,
             Elem::Bnd(_) => depth = depth.saturating_sub(1),
             Elem::Nxb(_) => {}
-            Elem::Ins(i) if depth > 0 && !in_model(i.mn) => return false,
+            Elem::Ins(i) if depth > 0 && steers(i.mn) => return false,
             // An indexed or indirect bit is no variable of the model.
             Elem::Ins(i)
                 if in_model(i.mn)
@@ -59,6 +69,9 @@ struct Segment {
     open: Vec<(Vec<Wire>, Vec<Wire>)>,
     /// Elements added besides the rail and the `__rc` contact.
     used: bool,
+    /// The ST instructions inside its branches: the hidden BOOL their
+    /// power goes into and their ST, run where the lowered network sets it.
+    inner: Vec<(String, String)>,
 }
 
 impl<'a> Emitter<'a> {
@@ -76,6 +89,7 @@ impl<'a> Emitter<'a> {
             power: vec![Wire::of(rc)],
             open: Vec::new(),
             used: false,
+            inner: Vec::new(),
         }
     }
 
@@ -101,9 +115,17 @@ impl<'a> Emitter<'a> {
         self.hidden.extend(l.hidden.iter().cloned());
         self.diags.extend(l.diagnostics.iter().cloned());
         for line in l.statements_text().lines() {
+            let line = line.trim_start();
             s.push_str("    ");
-            s.push_str(line.trim_start());
+            s.push_str(line);
             s.push('\n');
+            if let Some((_, code)) = seg
+                .inner
+                .iter()
+                .find(|(var, _)| line.starts_with(&format!("{var} :=")))
+            {
+                s.push_str(code);
+            }
         }
     }
 
@@ -139,6 +161,43 @@ impl<'a> Emitter<'a> {
                     seg.used = true;
                     let id = self.element(&mut seg, i);
                     seg.power = vec![Wire::of(id)];
+                }
+                Elem::Ins(i) if !seg.open.is_empty() => {
+                    // Inside a branch: a coil takes the power into the
+                    // instruction (its frame in the HMI), the instruction's
+                    // ST runs on it, a contact gives the condition after it.
+                    seg.used = true;
+                    let k = self
+                        .hidden
+                        .iter()
+                        .filter(|h| h.starts_with("__bin"))
+                        .count();
+                    let (into, out) = (format!("__bin{k}"), format!("__bout{k}"));
+                    self.hidden.push(into.clone());
+                    self.hidden.push(out.clone());
+                    seg.b.at(i.span);
+                    let coil = seg.b.coil(
+                        Text::generated(&into, i.span),
+                        false,
+                        Storage::None,
+                        EdgeKind::None,
+                        &seg.power,
+                    );
+                    let after = seg.b.contact(
+                        Text::generated(&out, i.span),
+                        false,
+                        EdgeKind::None,
+                        &[Wire::of(coil)],
+                    );
+                    self.elements
+                        .entry((i.span.file, i.span.start))
+                        .or_insert(coil);
+                    let code = self.ins(n, r, i, level);
+                    seg.inner.push((
+                        into.clone(),
+                        format!("    __rc := {into};\n{code}    {out} := __rc;\n"),
+                    ));
+                    seg.power = vec![Wire::of(after)];
                 }
                 Elem::Ins(i) => {
                     self.flush(seg, rung, s);

@@ -5,7 +5,9 @@
 //! (plain, S, R), every other instruction a box with its operands. Placed
 //! on a grid: one column per instruction of a series, one row per branch
 //! leg, rungs one under the other with their comment above. Each operand's text is its symbol from the
-//! table and its address (the descriptions would not fit the grid).
+//! table and its address; above it, a note with the symbol table's
+//! description (a box: each described operand's symbol and description),
+//! shortened to fit the column.
 
 use super::parse::{Elem, Ins, Operand, Project};
 use automat_plcopen::sheet::{NodeKind, Pin, Sheet, SheetLang, SheetNode, Wire};
@@ -24,8 +26,16 @@ struct Build<'a> {
 
 /// Column width and row height of the ladder grid.
 const COL: f64 = 170.0;
-const ROW: f64 = 70.0;
+/// A row: the element (a box up to 40 high), its operand text and the
+/// description note above it.
+const ROW: f64 = 110.0;
 const LEFT: f64 = 60.0;
+/// The note's place above its element, and the room above a rung for the
+/// rung comment and the first row's notes.
+const NOTE_UP: f64 = 52.0;
+const RUNG_UP: f64 = 90.0;
+/// The longest note (characters) a column holds.
+const NOTE_CHARS: usize = 26;
 
 fn pin(name: &str, from: &From) -> Pin {
     Pin {
@@ -88,8 +98,55 @@ impl Build<'_> {
         }
     }
 
+    /// The description of an operand named by a symbol of the table.
+    fn description(&self, o: &Operand) -> Option<(&str, &str)> {
+        let Operand::Addr(a) = o else { return None };
+        self.p
+            .symbols
+            .iter()
+            .find(|s| s.addr == *a && !s.desc.is_empty())
+            .map(|s| (s.name.as_str(), s.desc.as_str()))
+    }
+
+    /// The note above an instruction: its operands' descriptions.
+    fn note(&mut self, i: &Ins, (x, y): (f64, f64)) {
+        let descs: Vec<(&str, &str)> = i.ops.iter().filter_map(|o| self.description(o)).collect();
+        let box_like = !matches!(i.mn, "XIC" | "XIO" | "OTE" | "OTL" | "OTU");
+        let text = descs
+            .iter()
+            .map(|(name, desc)| {
+                if box_like {
+                    format!("{name}: {desc}")
+                } else {
+                    desc.to_string()
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("; ");
+        if text.is_empty() {
+            return;
+        }
+        let text = if text.chars().count() > NOTE_CHARS {
+            let mut t: String = text.chars().take(NOTE_CHARS - 3).collect();
+            t.push_str("...");
+            t
+        } else {
+            text
+        };
+        self.node_at(
+            NodeKind::Comment,
+            text,
+            "",
+            Vec::new(),
+            Vec::new(),
+            Some((x, y - NOTE_UP)),
+        );
+    }
+
     fn ins(&mut self, i: &Ins, from: &From, col: usize, row: usize) -> From {
-        let pos = Some((LEFT + col as f64 * COL, self.top + row as f64 * ROW));
+        let at = (LEFT + col as f64 * COL, self.top + row as f64 * ROW);
+        self.note(i, at);
+        let pos = Some(at);
         let ops: Vec<String> = i.ops.iter().map(|o| self.operand(o)).collect();
         let (kind, mark) = match i.mn {
             "XIC" => (NodeKind::Contact, ""),
@@ -267,7 +324,7 @@ pub fn sheet_drawn(p: &Project, lad: u32) -> Option<(Sheet, Vec<(u32, Ins)>)> {
         p,
         nodes: Vec::new(),
         drawn: Vec::new(),
-        top: 40.0,
+        top: RUNG_UP + 10.0,
     };
     // One left rail per rung, the rung's comment above it.
     for (r, rung) in f.rungs.iter().enumerate() {
@@ -281,7 +338,7 @@ pub fn sheet_drawn(p: &Project, lad: u32) -> Option<(Sheet, Vec<(u32, Ins)>)> {
             "",
             Vec::new(),
             Vec::new(),
-            Some((LEFT - 40.0, b.top - 30.0)),
+            Some((LEFT - 40.0, b.top - RUNG_UP)),
         );
         let rail = b.node_at(
             NodeKind::LeftRail,
@@ -292,7 +349,7 @@ pub fn sheet_drawn(p: &Project, lad: u32) -> Option<(Sheet, Vec<(u32, Ins)>)> {
             Some((LEFT - 40.0, b.top)),
         );
         let (_, _, rows) = b.series(&rung.elems, vec![(rail, None)], 0, 0);
-        b.top += rows as f64 * ROW + 40.0;
+        b.top += rows as f64 * ROW - ROW + 40.0 + RUNG_UP + 10.0;
     }
     let name = if f.name.is_empty() {
         format!("LAD {lad}")
