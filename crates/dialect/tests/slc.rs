@@ -8,7 +8,8 @@
 //! - `; expect N: ADDRESS = VALUE` read after scan N, exact (bits print
 //!   1/0, as `--print` shows them);
 //! - `; fault N: TEXT` scan N stops with a runtime fault whose message
-//!   contains TEXT;
+//!   contains TEXT (the expects of scan N are read in the image the fault
+//!   left, e.g. the PID's sub-error code);
 //! - `; error LINE: CODE` the file must give exactly these diagnostics.
 //!
 //! Every case runs on the interpreter and on the JIT.
@@ -163,6 +164,7 @@ fn run_scans<E: Executor>(engine: &mut E, case: &Case) -> Result<(), String> {
         for inst in &insts {
             match (engine.run_program(inst, now), &case.fault) {
                 (Err(f), Some((at, text))) if *at == scan && f.message.contains(text.as_str()) => {
+                    check_expects(engine, case, scan, &mut failures)?;
                     return if failures.is_empty() {
                         Ok(())
                     } else {
@@ -176,19 +178,30 @@ fn run_scans<E: Executor>(engine: &mut E, case: &Case) -> Result<(), String> {
                 _ => {}
             }
         }
-        for (_, p, v) in case.expects.iter().filter(|e| e.0 == scan) {
-            let place = resolve(engine.program(), p).map_err(|e| format!("{p}: {e}"))?;
-            let got = value::format(engine.image(), &place);
-            if &got != v {
-                failures.push(format!("after scan {scan}: {p} = {got}, expected {v}"));
-            }
-        }
+        check_expects(engine, case, scan, &mut failures)?;
     }
     if failures.is_empty() {
         Ok(())
     } else {
         Err(failures.join("\n"))
     }
+}
+
+/// The expects of `scan`, each mismatch pushed to `failures`.
+fn check_expects<E: Executor>(
+    engine: &E,
+    case: &Case,
+    scan: u64,
+    failures: &mut Vec<String>,
+) -> Result<(), String> {
+    for (_, p, v) in case.expects.iter().filter(|e| e.0 == scan) {
+        let place = resolve(engine.program(), p).map_err(|e| format!("{p}: {e}"))?;
+        let got = value::format(engine.image(), &place);
+        if &got != v {
+            failures.push(format!("after scan {scan}: {p} = {got}, expected {v}"));
+        }
+    }
+    Ok(())
 }
 
 fn cases() -> Vec<PathBuf> {

@@ -204,7 +204,7 @@ pub fn fault_marker(k: usize) -> String {
 impl super::emit::Emitter<'_> {
     /// A check: the PLC stops (the subrange fault of `__slc_fault`) when
     /// `bad` holds, the fault saying `what` and the instruction.
-    fn check(&mut self, bad: &str, what: String) -> String {
+    pub(super) fn check(&mut self, bad: &str, what: String) -> String {
         let k = self.faults.len();
         self.faults
             .push(format!("SLC major fault: {what} ({})", self.here));

@@ -208,7 +208,7 @@ impl<'a> Emitter<'a> {
         s.push_str("    __slc_started : BOOL;\n    __slc_last : LINT;\n    __slc_fault : __SLC_MAJOR_FAULT;\nEND_VAR\nVAR\n    __slc_trap : INT;\n");
         let _ = writeln!(
             s,
-            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d, __i : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;\n    __pidi, __pidp, __pide, __pids : ARRAY[0..{}] OF LREAL;\n    __sti : DINT;",
+            "    __rc, __t, __x, __mcr, __tnd : BOOL;\n    __bs, __bo : ARRAY[0..{}] OF BOOL;\n    __d, __i : DINT;\n    __now : LINT;\n    __rem : ARRAY[0..{}] OF DINT;\n    __pidi, __pidp, __pide, __pids : ARRAY[0..{}] OF LREAL;\n    __pidc, __stim : INT;\n    __sti : DINT;",
             MAX_BRANCH * (MAX_CALLS + 1) - 1,
             self.rems.len().max(1) - 1,
             self.pids.len().max(1) - 1
@@ -246,7 +246,7 @@ impl<'a> Emitter<'a> {
             return String::new();
         }
         let mut s = format!(
-            "    (* STI: S:30 interval (ms), S:31 file *)\n    IF S2[30] > 0 AND (S2[31] = {}) THEN\n    __sti := __sti + __d;\n    WHILE S2[30] > 0 AND __sti >= INT_TO_DINT(S2[30]) DO\n    __sti := __sti - INT_TO_DINT(S2[30]);\n    CASE S2[31] OF\n",
+            "    (* STI: S:30 interval (ms), S:31 file *)\n    IF S2[30] > 0 AND (S2[31] = {}) THEN\n    __sti := __sti + __d;\n    WHILE S2[30] > 0 AND __sti >= INT_TO_DINT(S2[30]) DO\n    __sti := __sti - INT_TO_DINT(S2[30]);\n    __stim := S2[0];\n    CASE S2[31] OF\n",
             files
                 .iter()
                 .map(|n| n.to_string())
@@ -260,7 +260,9 @@ impl<'a> Emitter<'a> {
                 "    {n}:\n    __mcr := TRUE;\n    __tnd := FALSE;\n{code}"
             );
         }
-        s.push_str("    END_CASE;\n    END_WHILE;\n    ELSE\n    __sti := 0;\n    END_IF;\n    __mcr := TRUE;\n    __tnd := FALSE;\n");
+        // As the SLC: the math flags S:0/0-3 the interrupted program saw
+        // are back when the STI file returns.
+        s.push_str("    END_CASE;\n    S2[0].0 := __stim.0; S2[0].1 := __stim.1; S2[0].2 := __stim.2; S2[0].3 := __stim.3;\n    END_WHILE;\n    ELSE\n    __sti := 0;\n    END_IF;\n    __mcr := TRUE;\n    __tnd := FALSE;\n");
         s
     }
 
@@ -699,11 +701,19 @@ impl<'a> Emitter<'a> {
                 let (arr, b) = (a0.array(), a0.index());
                 let w = |k: u32| format!("{arr}[{}]", b + k);
                 let k = self.pid_slot(a0);
-                format!(
-                    "    __x := __SLC_PID(RUNG := __rc, D := __d, PVIN := {}, SP := {}, KC := {}, TI := {}, TD := {}, BIAS := {}, SMAX := {}, SMIN := {}, DB := {}, OMAX := {}, OMIN := {}, UPD := {}, CTL := {}, W14 := {}, W15 := {}, W16 := {}, W17 := {}, W18 := {}, CV := {}, REM := __rem[{k}], I := __pidi[{p}], PREV := __pidp[{p}], PREVE := __pide[{p}], LSP := __pids[{p}]);\n",
-                    int(&op(1)), w(2), w(3), w(4), w(5), w(6), w(7), w(8), w(9), w(11), w(12), w(13), w(0), w(14), w(15), w(16), w(17), w(18),
+                let mut s = format!(
+                    "    __x := __SLC_PID(RUNG := __rc, D := __d, PVIN := {}, SP := {}, KC := {}, TI := {}, TD := {}, BIAS := {}, SMAX := {}, SMIN := {}, DB := {}, OMAX := {}, OMIN := {}, UPD := {}, CTL := {}, W1 := {}, W14 := {}, W15 := {}, W16 := {}, W17 := {}, W18 := {}, CV := {}, ERR := __pidc, REM := __rem[{k}], I := __pidi[{p}], PREV := __pidp[{p}], PREVE := __pide[{p}], LSP := __pids[{p}]);\n",
+                    int(&op(1)), w(2), w(3), w(4), w(5), w(6), w(7), w(8), w(9), w(11), w(12), w(13), w(0), w(1), w(14), w(15), w(16), w(17), w(18),
                     place(addr(&op(2))), p = self.pids_index(a0)
-                )
+                );
+                // One check per sub-error code, so the fault message says
+                // which control-block value is wrong.
+                for (code, what) in super::pid::ERRORS {
+                    let bad = format!("__pidc = 16#{code:X}");
+                    let msg = format!("PID error 0036h, sub-error {code:X}h in word 1: {what}");
+                    s.push_str(&self.check(&bad, msg));
+                }
+                s
             }
             "SBR" | "LBL" | "NOP" => String::new(),
             "AFI" => "    __rc := FALSE;\n".into(),

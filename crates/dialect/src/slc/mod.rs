@@ -28,6 +28,7 @@ mod instr;
 mod layout;
 mod network;
 mod parse;
+mod pid;
 mod sheet;
 
 use automat_base::{Code, Diagnostic, SourceMap, Span};
