@@ -551,6 +551,13 @@ impl<'a> Oop<'a> {
                         self.read_property(e, c, b, member, cx);
                         return;
                     }
+                    let own = matches!(&base.kind, ExprKind::Name(b) if b.sym == self.this || b.sym == self.self_);
+                    if !own && self.internal_reachable(c, member.sym, cx) {
+                        let mut b = (**base).clone();
+                        self.expr(&mut b, cx);
+                        self.internal_member(e, c, b, member);
+                        return;
+                    }
                 }
                 self.expr(base, cx);
             }

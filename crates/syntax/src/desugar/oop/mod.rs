@@ -43,6 +43,7 @@ mod decls;
 mod interfaces;
 mod items;
 mod poly;
+mod private;
 mod rules;
 mod types;
 
@@ -214,6 +215,14 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
     for (i, field) in std::mem::take(&mut d.poly_fields) {
         if let Some((u, _)) = itfs.get(&i) {
             if let Some(item) = d.poly_field_fn(i, field) {
+                out.push((*u, item));
+            }
+        }
+    }
+    // After the `__BR_` dispatchers, which may ask for some.
+    for (c, v) in std::mem::take(&mut d.private_fields) {
+        if let Some((u, _)) = classes.get(&c) {
+            if let Some(item) = d.private_field_fn(c, v) {
                 out.push((*u, item));
             }
         }
@@ -497,6 +506,9 @@ struct Oop<'a> {
     poly_fields: Vec<(Symbol, Symbol)>,
     /// `__BG_`/`__BS_<B^>__<prop>` accessor dispatchers asked for (interface, property, GET).
     poly_props: Vec<(Symbol, Symbol, bool)>,
+    /// `__PF_<C>__<v>` functions (class, internal variable) asked for by a
+    /// class's code reaching another instance's internal variable.
+    private_fields: Vec<(Symbol, Symbol)>,
     /// `__ITF_<I>` -> `I` (declarations already retyped).
     itf_structs: HashMap<Symbol, Symbol>,
     /// The result type of every plain FUNCTION, as written.
@@ -555,6 +567,7 @@ impl<'a> Oop<'a> {
             poly_class: HashMap::new(),
             poly_fields: Vec::new(),
             poly_props: Vec::new(),
+            private_fields: Vec::new(),
             itf_structs,
             returns: HashMap::new(),
             itf_equals: Vec::new(),

@@ -13,6 +13,12 @@ impl<'a> Oop<'a> {
             return;
         };
         let span = value.span;
+        if !view && self.is_nothing(value) {
+            // `NULL` (an input `n := NULL`): no instance.
+            let f = format!("__IN_{}", self.name(i));
+            *value = call_expr(self.sym(&f), Vec::new(), span);
+            return;
+        }
         if !view {
             // `REF(x)`: the instance `x`.
             if let ExprKind::Call { callee, args } = &mut value.kind {
@@ -192,6 +198,7 @@ impl<'a> Oop<'a> {
         let (bn, n) = (self.name(b), self.name(member.sym));
         match self.class_var_kind(b, member.sym) {
             Some((_, VarKind::Input | VarKind::Output)) => {}
+            Some(_) if self.internal_reachable(b, member.sym, cx) => {}
             Some(_) => {
                 self.err(
                     Code::E024,
@@ -466,23 +473,35 @@ impl<'a> Oop<'a> {
             },
             span,
         };
+        // An internal variable (reached from the class's own code) only
+        // through `__PF_` (the checker lets only `__THIS.v` reach it).
+        let internal = !matches!(
+            self.class_var_kind(b, field),
+            Some((_, VarKind::Input | VarKind::Output))
+        );
         let mut arms = Vec::new();
         let mut first = None;
         for c in self.implementors(i) {
             let k = self.ids.get(&c).copied().unwrap_or(0);
             let r = format!("__r{k}");
             let r = self.sym(&r);
-            let place = member_e(
-                Expr {
-                    kind: ExprKind::Deref(Box::new(member_e(name_e(osym), r))),
-                    span,
-                },
-                field,
-            );
+            let instance = Expr {
+                kind: ExprKind::Deref(Box::new(member_e(name_e(osym), r))),
+                span,
+            };
+            let value = if internal {
+                if !self.private_fields.contains(&(c, field)) {
+                    self.private_fields.push((c, field));
+                }
+                let f = self.private_fn_name(c, field);
+                self.private_call(f, instance, span)
+            } else {
+                call_expr(rsym, vec![member_e(instance, field)], span)
+            };
             let stmt = Stmt {
                 kind: StmtKind::Assign {
                     target: name_e(fsym),
-                    value: call_expr(rsym, vec![place], span),
+                    value,
                 },
                 span,
             };
