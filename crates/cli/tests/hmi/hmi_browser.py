@@ -71,6 +71,9 @@ class Api:
                           timeout=60)
         assert r.status_code == 200, r.text
 
+    def forces(self):
+        return requests.get(self.base + "/api/v1/forces", headers=self.h, timeout=30).json()["forces"]
+
     def read(self, *paths):
         return requests.get(self.base + "/api/v1/read", headers=self.h, params={"path": list(paths)},
                             timeout=30).json()["values"]
@@ -172,6 +175,9 @@ def crane(d, base, token, shots):
     check("forced values are styled apart", color == "rgb(179, 38, 30)", color)
     shot(d, os.path.join(shots, "watch.png"))
     d.find_element(By.CSS_SELECTOR, "button[aria-label='Unforce Ctrl.l4']").click()
+    # The click's request is asynchronous: step only once the server has
+    # released the force (a step before it would keep TRUE one more scan).
+    wait(d, "released", lambda: "Ctrl.l4" not in api.forces())
     api.step(1)
     v = wait(d, "unforced", lambda: row_value(d, "Ctrl.l4") == ["FALSE", False])
     check("unforce releases it (the plant gives FALSE again)", v, row_value(d, "Ctrl.l4"))
