@@ -418,6 +418,16 @@ def ladder(d, base, token, shots):
     api.step(1)
     v = wait(d, "unpowered", lambda: frame() == "power off")
     check("X7 FALSE again: contact 23 unpowered", v, frame())
+    # The TON's input values sit inside its box (not over the variable boxes
+    # wired to it on the left), its outputs' right of it.
+    ton = next((e for e in crane["elements"] if e["id"] == 27), None)
+    xs = d.execute_script(
+        "return [...document.querySelectorAll('#drawing-area .live text.pin[data-id=\"27\"]')]"
+        ".map(t => [t.dataset.pin, +t.getAttribute('x')]);")
+    inside = ton is not None and [p for p, x in xs if ton["x"] < x < ton["x"] + ton["w"]]
+    check("the TON's IN and PT values inside its box, Q and ET right of it",
+          sorted(inside or []) == ["IN", "PT"] and sorted(p for p, x in xs if x > ton["x"] + ton["w"]) == ["ET", "Q"],
+          (ton, xs))
     errors = console_errors(d)
     check("no script errors on the LD page", not errors, errors)
 
