@@ -3,7 +3,9 @@
 // element), and this file lays the live state over it: a contact or coil
 // whose power flow (the hidden BOOL `__ld_n<localId>`) is TRUE gets a green
 // frame, a FALSE one a grey frame; a variable element shows its value
-// under it, a block instance the value of each pin beside the pin.
+// under it, a block instance the value of each pin beside the pin (an
+// input's inside the block, after the pin's name, so that it never runs
+// over the variable box wired to it on the left).
 'use strict';
 
 (function () {
@@ -21,6 +23,24 @@
   /** The full path of an answer's path for instance `inst` (`.x` is
    * relative to the instance, anything else a global). */
   const full = (inst, p) => (p.startsWith('.') ? inst + p : p);
+
+  // The drawing's estimate of a character's width (`text_w` in
+  // crates/cli/src/draw) and of the value font's (11px monospace).
+  const NAME_CH = 6;
+  const VALUE_CH = 6.7;
+
+  /** Where the value of input `pin` of block `e` goes: after the pin's
+   * name inside the block, with the room left before the name of the output
+   * on the same row (or the block's edge), in characters. */
+  function inputLabel(e, pin) {
+    const x = pin.x + 4 + NAME_CH * (pin.name.length + 1);
+    const out = (e.pins || []).find((o) => o.output && Math.abs(o.y - pin.y) < 1);
+    const end = e.x + e.w - 4 - (out ? NAME_CH * out.name.length + 4 : 0);
+    return { x, y: pin.y + 4, chars: Math.max(1, Math.floor((end - x) / VALUE_CH)) };
+  }
+
+  /** `v` cut to `n` characters (the last one an ellipsis when cut). */
+  const fit = (v, n) => (v.length <= n ? v : v.slice(0, Math.max(0, n - 1)) + '\u2026');
 
   /** Parses the server's SVG (never as HTML: nothing in it runs). */
   function svgOf(text) {
@@ -68,14 +88,23 @@
       for (const pin of e.pins || []) {
         const p = full(inst, pin.path);
         paths.push(p);
+        // An output's value above its wire, right of the block; an input's
+        // inside the block (its wire's left end is a variable box).
+        const at = pin.output ? { x: pin.x + 6, y: pin.y - 4, chars: Infinity } : inputLabel(e, pin);
         const t = s('text', {
-          class: 'value pin', x: pin.output ? pin.x + 6 : pin.x - 6, y: pin.y - 4,
-          'text-anchor': pin.output ? 'start' : 'end', 'data-id': e.id, 'data-pin': pin.name,
+          class: 'value pin', x: at.x, y: at.y,
+          'text-anchor': 'start', 'data-id': e.id, 'data-pin': pin.name,
         });
+        const tip = s('title');
+        t.append(tip);
         layer.append(t);
         marks.push((values) => {
           const v = values.get(p);
-          t.textContent = v === undefined ? '' : shown(v);
+          const text = v === undefined ? '' : shown(v);
+          // The whole value stays readable as the label's tooltip.
+          t.textContent = fit(text, at.chars);
+          tip.textContent = text;
+          t.append(tip);
           t.classList.toggle('on', v === 'TRUE');
         });
       }

@@ -5,10 +5,10 @@
 //! resolves them against the running program). The SLC-500 program files
 //! too (`slc_drawings`).
 
-use super::sheet::{boxes, draw};
+use super::sheet::{boxes, draw, Boxed};
 use crate::plot::svg;
 use automat_online::drawings::{Drawing, Element, Pin};
-use automat_plcopen::sheet::{Found, NodeKind, SheetLang};
+use automat_plcopen::sheet::{Found, NodeKind, Sheet, SheetLang, SheetNode};
 
 fn kind_name(k: NodeKind) -> &'static str {
     use NodeKind::*;
@@ -41,6 +41,55 @@ fn is_path(t: &str) -> bool {
             .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '.' | '[' | ']'))
 }
 
+/// The file's own name: the page is for the operator, not the folder
+/// layout of the machine it runs on.
+fn short_name(file: &str) -> String {
+    std::path::Path::new(file)
+        .file_name()
+        .map_or(file.to_string(), |n| n.to_string_lossy().into_owned())
+}
+
+/// The element of box `b` (node `n`), before any live value is named.
+fn element(b: &Boxed, n: &SheetNode) -> Element {
+    Element {
+        id: b.id,
+        kind: kind_name(b.kind),
+        text: n.text.clone(),
+        x: b.x,
+        y: b.y,
+        w: b.w,
+        h: b.h,
+        power: None,
+        value: None,
+        pins: Vec::new(),
+    }
+}
+
+/// Sheet `s` of `file` drawn as `automat draw` draws it, titled
+/// `POU (lang, file name)`, with its live `elements`.
+fn drawing(
+    s: &Sheet,
+    lang: &'static str,
+    file: &str,
+    runs_in: Option<String>,
+    dialect: Option<&'static str>,
+    elements: Vec<Element>,
+) -> Drawing {
+    let title = format!("{} ({lang}, {})", s.pou, short_name(file));
+    let diagram = draw(s).finish(&title);
+    Drawing {
+        pou: s.pou.clone(),
+        runs_in,
+        dialect,
+        lang,
+        file: file.to_string(),
+        svg: svg::diagram(&diagram),
+        width: diagram.width,
+        height: diagram.height,
+        elements,
+    }
+}
+
 /// The drawings of every LD and FBD POU in the PLCopen files of `map`.
 pub fn drawings(map: &automat_base::SourceMap) -> Vec<Drawing> {
     let mut out = Vec::new();
@@ -53,27 +102,9 @@ pub fn drawings(map: &automat_base::SourceMap) -> Vec<Drawing> {
                 continue;
             };
             let lang = if s.lang == SheetLang::Ld { "LD" } else { "FBD" };
-            // The file's own name: the page is for the operator, not the
-            // folder layout of the machine it runs on.
-            let short = std::path::Path::new(&f.name)
-                .file_name()
-                .map_or(f.name.clone(), |n| n.to_string_lossy().into_owned());
-            let title = format!("{} ({lang}, {short})", s.pou);
-            let diagram = draw(&s).finish(&title);
             let mut elements = Vec::new();
             for (b, n) in boxes(&s).into_iter().zip(&s.nodes) {
-                let mut e = Element {
-                    id: b.id,
-                    kind: kind_name(b.kind),
-                    text: n.text.clone(),
-                    x: b.x,
-                    y: b.y,
-                    w: b.w,
-                    h: b.h,
-                    power: None,
-                    value: None,
-                    pins: Vec::new(),
-                };
+                let mut e = element(&b, n);
                 match b.kind {
                     NodeKind::Contact | NodeKind::Coil => {
                         e.power = Some(format!("__ld_n{}", b.id));
@@ -101,17 +132,7 @@ pub fn drawings(map: &automat_base::SourceMap) -> Vec<Drawing> {
                 }
                 elements.push(e);
             }
-            out.push(Drawing {
-                pou: s.pou.clone(),
-                runs_in: None,
-                dialect: None,
-                lang,
-                file: f.name.clone(),
-                svg: svg::diagram(&diagram),
-                width: diagram.width,
-                height: diagram.height,
-                elements,
-            });
+            out.push(drawing(&s, lang, &f.name, None, None, elements));
         }
     }
     out.extend(slc_drawings(map));
@@ -126,11 +147,6 @@ fn slc_drawings(map: &automat_base::SourceMap) -> Vec<Drawing> {
     let mut out = Vec::new();
     for ls in automat_dialect::slc_live_sheets(map) {
         let s = &ls.sheet;
-        let short = std::path::Path::new(&ls.file)
-            .file_name()
-            .map_or(ls.file.clone(), |n| n.to_string_lossy().into_owned());
-        let title = format!("{} (LD, {short})", s.pou);
-        let diagram = draw(s).finish(&title);
         let mut elements = Vec::new();
         for (b, n) in boxes(s).into_iter().zip(&s.nodes) {
             let live = ls.live.iter().find(|l| l.node == b.id);
@@ -150,29 +166,14 @@ fn slc_drawings(map: &automat_base::SourceMap) -> Vec<Drawing> {
                 _ => Vec::new(),
             };
             elements.push(Element {
-                id: b.id,
-                kind: kind_name(b.kind),
-                text: n.text.clone(),
-                x: b.x,
-                y: b.y,
-                w: b.w,
-                h: b.h,
                 power: live.and_then(|l| l.power.clone()),
                 value: live.and_then(|l| l.value.clone()),
                 pins,
+                ..element(&b, n)
             });
         }
-        out.push(Drawing {
-            pou: s.pou.clone(),
-            runs_in: Some("SLC".to_string()),
-            dialect: Some("slc"),
-            lang: "LD",
-            file: ls.file.clone(),
-            svg: svg::diagram(&diagram),
-            width: diagram.width,
-            height: diagram.height,
-            elements,
-        });
+        let runs_in = Some("SLC".to_string());
+        out.push(drawing(s, "LD", &ls.file, runs_in, Some("slc"), elements));
     }
     out
 }

@@ -71,6 +71,9 @@ class Api:
                           timeout=60)
         assert r.status_code == 200, r.text
 
+    def forces(self):
+        return requests.get(self.base + "/api/v1/forces", headers=self.h, timeout=30).json()["forces"]
+
     def read(self, *paths):
         return requests.get(self.base + "/api/v1/read", headers=self.h, params={"path": list(paths)},
                             timeout=30).json()["values"]
@@ -172,6 +175,9 @@ def crane(d, base, token, shots):
     check("forced values are styled apart", color == "rgb(179, 38, 30)", color)
     shot(d, os.path.join(shots, "watch.png"))
     d.find_element(By.CSS_SELECTOR, "button[aria-label='Unforce Ctrl.l4']").click()
+    # The click's request is asynchronous: step only once the server has
+    # released the force (a step before it would keep TRUE one more scan).
+    wait(d, "released", lambda: "Ctrl.l4" not in api.forces())
     api.step(1)
     v = wait(d, "unforced", lambda: row_value(d, "Ctrl.l4") == ["FALSE", False])
     check("unforce releases it (the plant gives FALSE again)", v, row_value(d, "Ctrl.l4"))
@@ -412,6 +418,16 @@ def ladder(d, base, token, shots):
     api.step(1)
     v = wait(d, "unpowered", lambda: frame() == "power off")
     check("X7 FALSE again: contact 23 unpowered", v, frame())
+    # The TON's input values sit inside its box (not over the variable boxes
+    # wired to it on the left), its outputs' right of it.
+    ton = next((e for e in crane["elements"] if e["id"] == 27), None)
+    xs = d.execute_script(
+        "return [...document.querySelectorAll('#drawing-area .live text.pin[data-id=\"27\"]')]"
+        ".map(t => [t.dataset.pin, +t.getAttribute('x')]);")
+    inside = ton is not None and [p for p, x in xs if ton["x"] < x < ton["x"] + ton["w"]]
+    check("the TON's IN and PT values inside its box, Q and ET right of it",
+          sorted(inside or []) == ["IN", "PT"] and sorted(p for p, x in xs if x > ton["x"] + ton["w"]) == ["ET", "Q"],
+          (ton, xs))
     errors = console_errors(d)
     check("no script errors on the LD page", not errors, errors)
 

@@ -156,6 +156,13 @@ fn is_function(e: &Element) -> bool {
     matches!(&e.kind, Kind::Block { instance: None, .. })
 }
 
+/// The EN pin of a block (a function without it wired is still called).
+fn is_en(p: &PinIn) -> bool {
+    p.formal
+        .as_deref()
+        .is_some_and(|f| f.eq_ignore_ascii_case("EN"))
+}
+
 /// Elements that are statements of their own.
 fn is_statement(e: &Element) -> bool {
     match &e.kind {
@@ -318,18 +325,8 @@ impl<'n> L<'n> {
                     return;
                 }
                 self.expanding.push(i);
-                match e.inputs.first() {
-                    Some(p) if !p.conns.is_empty() => self.pin(out, e, p),
-                    _ => {
-                        self.err(
-                            Code::E173,
-                            e.span,
-                            e,
-                            "the connector's input is not connected",
-                        );
-                        out.push(Piece::Gen("FALSE".into(), sp));
-                    }
-                }
+                let msg = "the connector's input is not connected";
+                self.first_input(out, e, Code::E173, msg, sp);
                 self.expanding.pop();
             }
             _ => {
@@ -351,14 +348,9 @@ impl<'n> L<'n> {
         if !matches!(op.as_str(), "AND" | "OR" | "XOR" | "NOT" | "MOD") {
             return false;
         }
-        let idx = self.by_id.get(&e.id).copied().unwrap_or(0);
-        let ins: Vec<&PinIn> = e
-            .inputs
-            .iter()
-            .filter(|p| !p.formal.as_deref().unwrap_or("").eq_ignore_ascii_case("EN"))
-            .collect();
+        let ins: Vec<&PinIn> = e.inputs.iter().filter(|p| !is_en(p)).collect();
         let en = ins.len() < e.inputs.len();
-        if en || self.eno_read.get(idx).copied().unwrap_or(false) {
+        if en || self.reads_eno(e) {
             self.err(
                 Code::E171,
                 e.span,
@@ -390,13 +382,7 @@ impl<'n> L<'n> {
                 out.push(Piece::Gen(format!(" {op} "), p.span));
             }
             if p.conns.is_empty() {
-                let formal = p.formal.clone().unwrap_or_default();
-                self.err(
-                    Code::E173,
-                    p.span,
-                    e,
-                    format!("input `{formal}` of `{op}` is not connected"),
-                );
+                self.unconnected(e, p, &op);
                 out.push(Piece::Gen("FALSE".into(), p.span));
             } else {
                 out.push(Piece::Gen("(".into(), p.span));
@@ -447,20 +433,14 @@ impl<'n> L<'n> {
         if is_function(e) && self.operator(out, e, callee) {
             return;
         }
-        let idx = self.by_id.get(&e.id).copied().unwrap_or(0);
         out.push(Piece::Copy(callee.clone()));
         out.push(Piece::Gen("(".into(), e.span));
         let mut first = true;
         for (k, p) in e.inputs.iter().enumerate() {
             let formal = p.formal.clone().unwrap_or_default();
             if p.conns.is_empty() {
-                if is_function(e) && !formal.eq_ignore_ascii_case("EN") {
-                    self.err(
-                        Code::E173,
-                        p.span,
-                        e,
-                        format!("input `{formal}` of `{}` is not connected", callee.text),
-                    );
+                if is_function(e) && !is_en(p) {
+                    self.unconnected(e, p, &callee.text);
                 }
                 continue;
             }
@@ -486,7 +466,7 @@ impl<'n> L<'n> {
                 self.pin(out, e, p);
             }
         }
-        if is_function(e) && self.eno_read.get(idx).copied().unwrap_or(false) {
+        if is_function(e) && self.reads_eno(e) {
             if !first {
                 out.push(Piece::Gen(", ".into(), e.span));
             }
@@ -525,29 +505,47 @@ impl<'n> L<'n> {
 
     /// The left connection of a contact or coil (E175 when missing).
     fn left(&mut self, out: &mut Vec<Piece>, e: &Element) {
-        match e.inputs.first() {
-            Some(p) if !p.conns.is_empty() => self.pin(out, e, p),
-            _ => {
-                self.err(Code::E175, e.span, e, "nothing is connected on the left");
-                out.push(Piece::Gen("FALSE".into(), e.span));
-            }
-        }
+        let msg = "nothing is connected on the left";
+        self.first_input(out, e, Code::E175, msg, e.span);
     }
 
     /// The connected input of an output variable, jump or return.
     fn input(&mut self, out: &mut Vec<Piece>, e: &Element, what: &str) {
+        let msg = format!("the input of this {what} is not connected");
+        self.first_input(out, e, Code::E173, msg, e.span);
+    }
+
+    /// The element's first input pin, or `code` and a `FALSE` at `at` when
+    /// nothing is wired to it (so the generated text still parses).
+    fn first_input(
+        &mut self,
+        out: &mut Vec<Piece>,
+        e: &Element,
+        code: Code,
+        msg: impl std::fmt::Display,
+        at: Span,
+    ) {
         match e.inputs.first() {
             Some(p) if !p.conns.is_empty() => self.pin(out, e, p),
             _ => {
-                self.err(
-                    Code::E173,
-                    e.span,
-                    e,
-                    format!("the input of this {what} is not connected"),
-                );
-                out.push(Piece::Gen("FALSE".into(), e.span));
+                self.err(code, e.span, e, msg);
+                out.push(Piece::Gen("FALSE".into(), at));
             }
         }
+    }
+
+    /// E173 for the input pin `p` of the call to `callee` left unwired.
+    fn unconnected(&mut self, e: &Element, p: &PinIn, callee: &str) {
+        let formal = p.formal.as_deref().unwrap_or_default();
+        let msg = format!("input `{formal}` of `{callee}` is not connected");
+        self.err(Code::E173, p.span, e, msg);
+    }
+
+    /// Whether some element reads this function's ENO (so the call names
+    /// `ENO => __ld_eno<id>`).
+    fn reads_eno(&self, e: &Element) -> bool {
+        let idx = self.by_id.get(&e.id).copied().unwrap_or(0);
+        self.eno_read.get(idx).copied().unwrap_or(false)
     }
 
     fn statement(&mut self, out: &mut Vec<Piece>, i: usize) {
