@@ -80,6 +80,23 @@ fn spelled(layout: &Layout, interner: &Interner, sym: Symbol) -> String {
 
 /// The layout-level type of a sema type.
 pub fn symbol_type(layout: &mut Layout, interner: &Interner, ty: TypeId, depth: u32) -> SymbolType {
+    symbol_type_in(layout, interner, ty, depth, &mut Vec::new())
+}
+
+/// How many times one type may be the target of the references on the
+/// way down: a linked list (`next : REF_TO Node`) is shown this many
+/// links deep, and types that refer to each other through several
+/// references (a base class's hidden interface holds one per derived
+/// class) stay a small tree instead of one exponential in the depth.
+const REF_REPEATS: usize = 3;
+
+fn symbol_type_in(
+    layout: &mut Layout,
+    interner: &Interner,
+    ty: TypeId,
+    depth: u32,
+    refs: &mut Vec<TypeId>,
+) -> SymbolType {
     let model = layout.model;
     if depth > 64 {
         return SymbolType::Struct {
@@ -97,7 +114,7 @@ pub fn symbol_type(layout: &mut Layout, interner: &Interner, ty: TypeId, depth: 
         TypeKind::String { wide: true, len } => SymbolType::WString { cap: len },
         TypeKind::Array { elem, dims } => SymbolType::Array {
             stride: layout.stride(elem),
-            elem: Box::new(symbol_type(layout, interner, elem, depth + 1)),
+            elem: Box::new(symbol_type_in(layout, interner, elem, depth + 1, refs)),
             dims: layout.dims(&dims),
         },
         TypeKind::Struct { name, members } => {
@@ -109,7 +126,7 @@ pub fn symbol_type(layout: &mut Layout, interner: &Interner, ty: TypeId, depth: 
                     name: interner.name(m.name).to_string(),
                     offset,
                     bit: None,
-                    ty: symbol_type(layout, interner, m.ty, depth + 1),
+                    ty: symbol_type_in(layout, interner, m.ty, depth + 1, refs),
                 })
                 .collect();
             SymbolType::Struct {
@@ -143,7 +160,7 @@ pub fn symbol_type(layout: &mut Layout, interner: &Interner, ty: TypeId, depth: 
                         continue;
                     }
                     if let crate::layout::Slot::Rel(offset) = slot {
-                        let t = symbol_type(layout, interner, v.ty, depth + 1);
+                        let t = symbol_type_in(layout, interner, v.ty, depth + 1, refs);
                         fields.push(Field {
                             name: interner.name(v.name).to_string(),
                             offset: *offset,
@@ -162,7 +179,18 @@ pub fn symbol_type(layout: &mut Layout, interner: &Interner, ty: TypeId, depth: 
                 fields,
             }
         }
-        TypeKind::Ref(t) => SymbolType::Ref(Box::new(symbol_type(layout, interner, t, depth + 1))),
+        TypeKind::Ref(t) => {
+            if refs.iter().filter(|&&r| r == t).count() >= REF_REPEATS {
+                return SymbolType::Ref(Box::new(SymbolType::Struct {
+                    name: "?".into(),
+                    fields: Vec::new(),
+                }));
+            }
+            refs.push(t);
+            let target = symbol_type_in(layout, interner, t, depth + 1, refs);
+            refs.pop();
+            SymbolType::Ref(Box::new(target))
+        }
     }
 }
 
