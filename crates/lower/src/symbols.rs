@@ -80,22 +80,23 @@ fn spelled(layout: &Layout, interner: &Interner, sym: Symbol) -> String {
 
 /// The layout-level type of a sema type.
 pub fn symbol_type(layout: &mut Layout, interner: &Interner, ty: TypeId, depth: u32) -> SymbolType {
-    symbol_type_in(layout, interner, ty, depth, &mut Vec::new())
+    symbol_type_in(layout, interner, ty, depth, 0)
 }
 
-/// How many times one type may be the target of the references on the
-/// way down: a linked list (`next : REF_TO Node`) is shown this many
-/// links deep, and types that refer to each other through several
-/// references (a base class's hidden interface holds one per derived
-/// class) stay a small tree instead of one exponential in the depth.
-const REF_REPEATS: usize = 3;
+/// How many references deep the tree goes: a linked list (`next : REF_TO
+/// Node`) is shown this many links deep. Types that refer to each other
+/// through several references (a base class's hidden interface holds one
+/// per class that extends it) would otherwise grow a tree exponential in
+/// the depth. Only names (`--print`, the online API) stop at this depth;
+/// the program's code follows references however deep.
+const REF_DEPTH: usize = 4;
 
 fn symbol_type_in(
     layout: &mut Layout,
     interner: &Interner,
     ty: TypeId,
     depth: u32,
-    refs: &mut Vec<TypeId>,
+    refs: usize,
 ) -> SymbolType {
     let model = layout.model;
     if depth > 64 {
@@ -180,15 +181,13 @@ fn symbol_type_in(
             }
         }
         TypeKind::Ref(t) => {
-            if refs.iter().filter(|&&r| r == t).count() >= REF_REPEATS {
+            if refs >= REF_DEPTH {
                 return SymbolType::Ref(Box::new(SymbolType::Struct {
                     name: "?".into(),
                     fields: Vec::new(),
                 }));
             }
-            refs.push(t);
-            let target = symbol_type_in(layout, interner, t, depth + 1, refs);
-            refs.pop();
+            let target = symbol_type_in(layout, interner, t, depth + 1, refs + 1);
             SymbolType::Ref(Box::new(target))
         }
     }
