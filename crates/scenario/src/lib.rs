@@ -4,6 +4,7 @@
 pub mod ast;
 pub mod check;
 pub mod conformance;
+pub mod eval;
 mod lex;
 pub mod parse;
 pub mod run;

@@ -30,7 +30,8 @@
 //! fault of the program fails the scenario.
 
 use crate::ast::{self, Anchor, Scenario, When};
-use crate::check::{same, show_f64, show_value, Cond, Ctx, Frame, NoPlant, Ref, Scope, Src, Val};
+use crate::check::{Cond, Ctx, NoPlant, Ref, Scope, Src};
+use crate::eval::{same, show_f64, show_value, Frame, Val};
 use automat_base::Diagnostic;
 use automat_engine::Engine;
 use automat_iec::format::format_duration;

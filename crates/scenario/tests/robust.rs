@@ -241,7 +241,7 @@ fn scenario_case(text: &str, target: Option<&Target>, run: bool) -> bool {
             );
         }
         if let Ok(c) = scope.condition(&e.cond, &mut refs) {
-            let _ = c.truth(automat_scenario::check::Frame::of(&[]));
+            let _ = c.truth(automat_scenario::eval::Frame::of(&[]));
         }
     }
     for r in &scn.reactions {
