@@ -14,6 +14,7 @@
 //! naming the rung and the instruction (never an engine's bounds check).
 
 use automat_base::slc::{self, Address, FileType, Part};
+use automat_base::slc_indirect;
 use std::fmt::Write;
 
 /// An address resolved at run time.
@@ -40,106 +41,19 @@ pub struct Dynamic {
 
 /// Does the operand text name an indexed or indirect address?
 pub fn is_dynamic(up: &str) -> bool {
-    up.starts_with('#') || up.contains('[')
-}
-
-/// The word an indirect part is read from: a word of an integer file
-/// (`N7:0`, `T4:0.ACC`), not a bit, a float or another indirect address.
-fn pointer(inner: &str) -> Result<Address, String> {
-    if is_dynamic(inner) {
-        return Err(format!(
-            "`[{inner}]`: the word inside `[ ]` is a direct address (no `#`, no nested `[ ]`)"
-        ));
-    }
-    let a = slc::parse(inner)?;
-    if a.is_bit() || a.is_structure() || a.ty == FileType::F {
-        return Err(format!(
-            "`[{inner}]`: the word inside `[ ]` is an integer word (`N7:0`, `T4:0.ACC`), not a bit, a float or a whole element"
-        ));
-    }
-    Ok(a)
+    slc_indirect::is_dynamic(up)
 }
 
 /// Parses an indexed or indirect address (`up` in upper case).
 pub fn parse(up: &str, slot: usize) -> Result<Dynamic, String> {
-    let bad = |why: &str| Err(format!("`{up}`: {why}"));
-    if let Some(rest) = up.strip_prefix('#') {
-        if rest.contains('[') {
-            return bad("an address is indexed (`#N7:0`) or indirect (`N7:[N7:0]`), not both");
-        }
-        let a = slc::parse(rest)?;
-        if a.part != Part::Element || !matches!(a.ty, FileType::B | FileType::N | FileType::F) {
-            return bad("an indexed address names a word of a B or N file or a float of an F file (`#N7:0`, `#F8:2`)");
-        }
-        return Ok(Dynamic {
-            addr: a,
-            indexed: true,
-            file_from: None,
-            elem_from: None,
-            bit_from: None,
-            flat: false,
-            slot,
-            text: up.to_string(),
-        });
-    }
-    // Each `[word]` is replaced by a placeholder the direct parser accepts,
-    // its place (after the type letter, `:` or `/`) saying what it gives.
-    let mut template = String::new();
-    let (mut file_from, mut elem_from, mut bit_from, mut flat) = (None, None, None, false);
-    let mut rest = up;
-    while let Some(open) = rest.find('[') {
-        let (head, tail) = rest.split_at(open);
-        let Some(close) = tail.find(']') else {
-            return bad("`[` without `]`");
-        };
-        let inner = &tail[1..close];
-        template.push_str(head);
-        let at = pointer(inner)?;
-        let before = template.chars().last();
-        let first = template.len() == 1;
-        match before {
-            Some(c) if first && FileType::from_letter(c).is_some() => {
-                if file_from.replace(at).is_some() {
-                    return bad("the file is given twice");
-                }
-                template.push('9');
-            }
-            Some(':') if elem_from.is_none() => {
-                elem_from = Some(at);
-                template.push('0');
-            }
-            Some('/') if bit_from.is_none() => {
-                flat = !template.contains(':');
-                bit_from = Some(at);
-                template.push('0');
-            }
-            _ => return bad("`[word]` stands for the file number (`N[N7:0]:1`), the element (`N7:[N7:0]`) or the bit (`B3/[N7:1]`, `B3:0/[N7:2]`)"),
-        }
-        rest = &tail[close + 1..];
-    }
-    if rest.contains(']') {
-        return bad("`]` without `[`");
-    }
-    template.push_str(rest);
-    let addr = slc::parse(&template).map_err(|why| format!("`{up}`: {why}"))?;
-    if addr.is_structure() {
-        return bad("a whole timer, counter or control element is no operand here");
-    }
-    if file_from.is_some() {
-        if addr.is_bit() || addr.ty == FileType::F {
-            return bad("an indirect file number is for words of integer files (`N[N7:0]:1`)");
-        }
-        if matches!(addr.ty, FileType::I | FileType::O | FileType::S) {
-            return bad("O, I and S are files 0, 1 and 2: their number is not indirect");
-        }
-    }
+    let i = slc_indirect::parse(up)?;
     Ok(Dynamic {
-        addr,
-        indexed: false,
-        file_from,
-        elem_from,
-        bit_from,
-        flat,
+        addr: i.addr,
+        indexed: i.indexed,
+        file_from: i.file_from,
+        elem_from: i.elem_from,
+        bit_from: i.bit_from,
+        flat: i.flat,
         slot,
         text: up.to_string(),
     })
