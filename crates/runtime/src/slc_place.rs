@@ -11,7 +11,7 @@
 //! naming the address and the file's range; the PLC is not affected.
 
 use crate::path::{self, Place, PlaceType};
-use automat_base::slc::{FileType, Part, IO_SLOT_WORDS};
+use automat_base::slc::{Address, FileType, Part, IO_SLOT_WORDS};
 use automat_base::slc_indirect::{self, Indirect};
 use automat_iec::Elementary;
 use automat_ir::{Program, SymbolType};
@@ -66,7 +66,7 @@ pub fn locate(program: &Program, text: &str) -> Result<Locator, String> {
         return path::resolve(program, t).map(Locator::Fixed);
     }
     let ind = slc_indirect::parse(&t.to_ascii_uppercase()).map_err(|e| format!("{e} ({t})"))?;
-    let pointer = |a: Option<automat_base::slc::Address>| -> Result<Option<Place>, String> {
+    let pointer = |a: Option<Address>| -> Result<Option<Place>, String> {
         a.map(|a| path::resolve_slc_address(program, a)).transpose()
     };
     let index_register = if ind.indexed {
@@ -180,6 +180,15 @@ impl Locator {
         }
     }
 
+    /// The direct address an indexed or indirect one names in `image`
+    /// (`N7:3` for `N7:[N7:0]` while N7:0 = 3); `None` for a fixed place.
+    pub fn direct(&self, image: &[u8]) -> Option<Result<String, String>> {
+        match self {
+            Locator::Fixed(_) => None,
+            Locator::Slc(s) => Some(s.address(image).map(|(a, _)| a.to_string())),
+        }
+    }
+
     /// The fixed place, `None` for an indexed or indirect address.
     pub fn fixed(&self) -> Option<&Place> {
         match self {
@@ -200,7 +209,8 @@ impl SlcPlace {
         })
     }
 
-    fn place(&self, image: &[u8]) -> Result<Place, String> {
+    /// The direct address it names in `image`, and the file holding it.
+    fn address(&self, image: &[u8]) -> Result<(Address, &DataFile), String> {
         let t = &self.text;
         let a = self.ind.addr;
         let letter = a.ty.letter();
@@ -228,7 +238,15 @@ impl SlcPlace {
         let io = matches!(a.ty, FileType::I | FileType::O);
         let per_elem = if io { IO_SLOT_WORDS } else { a.ty.words() };
         let len = i64::from(file.len);
-        let (index, bit) = if self.ind.indexed {
+        let number = |v: i64| u32::try_from(v).unwrap_or(0);
+        let at = |elem: i64, part: Part| Address {
+            ty: a.ty,
+            file: file.number,
+            elem: number(elem),
+            part,
+        };
+        if self.ind.indexed {
+            // B, N and F files only: one word (float) per element.
             let s24 = self.index_register.as_ref().map_or(Ok(0), |p| word(image, p))?;
             let i = i64::from(a.index()) + s24;
             if !(0..len).contains(&i) {
@@ -238,8 +256,9 @@ impl SlcPlace {
                     len - 1
                 ));
             }
-            (i, None)
-        } else if let (true, Some(p)) = (self.ind.flat, &self.bit_word) {
+            return Ok((at(i, Part::Element), file));
+        }
+        if let (true, Some(p)) = (self.ind.flat, &self.bit_word) {
             let b = word(image, p)?;
             if !(0..len * 16).contains(&b) {
                 return Err(format!(
@@ -247,51 +266,49 @@ impl SlcPlace {
                     len * 16 - 1
                 ));
             }
-            (b / 16, Some(b % 16))
-        } else {
-            let elements = len / i64::from(per_elem);
-            let elem = match &self.elem_word {
-                Some(p) => word(image, p)?,
-                None => i64::from(a.elem),
-            };
-            if !(0..elements).contains(&elem) {
-                return Err(format!(
-                    "indirect address `{t}`: the element {elem} is not one of data file {name} (0 to {})",
-                    elements - 1
-                ));
-            }
-            let (w, fixed_bit) = match a.part {
-                Part::Element => (0, None),
-                Part::Word(w) => (w, None),
-                Part::Bit(w, b) => (w, Some(i64::from(b))),
-            };
-            let bit = match &self.bit_word {
-                Some(p) => {
-                    let b = word(image, p)?;
-                    if !(0..16).contains(&b) {
-                        return Err(format!(
-                            "indirect address `{t}`: the bit {b} is not 0 to 15"
-                        ));
-                    }
-                    Some(b)
-                }
-                None => fixed_bit,
-            };
-            (elem * i64::from(per_elem) + i64::from(w), bit)
+            return Ok((at(b / 16, Part::Bit(0, number(b % 16))), file));
+        }
+        let elements = len / i64::from(per_elem);
+        let elem = match &self.elem_word {
+            Some(p) => word(image, p)?,
+            None => i64::from(a.elem),
         };
-        let offset = u32::try_from(index)
-            .ok()
-            .and_then(|i| i.checked_mul(file.stride))
+        if !(0..elements).contains(&elem) {
+            return Err(format!(
+                "indirect address `{t}`: the element {elem} is not one of data file {name} (0 to {})",
+                elements - 1
+            ));
+        }
+        let part = match (a.part, &self.bit_word) {
+            (Part::Bit(w, _), Some(p)) => {
+                let b = word(image, p)?;
+                if !(0..16).contains(&b) {
+                    return Err(format!(
+                        "indirect address `{t}`: the bit {b} is not 0 to 15"
+                    ));
+                }
+                Part::Bit(w, number(b))
+            }
+            (part, _) => part,
+        };
+        Ok((at(elem, part), file))
+    }
+
+    fn place(&self, image: &[u8]) -> Result<Place, String> {
+        let (a, file) = self.address(image)?;
+        let offset = a
+            .index()
+            .checked_mul(file.stride)
             .and_then(|d| file.offset.checked_add(d))
-            .ok_or_else(|| format!("`{t}` lies outside the memory image"))?;
-        Ok(match bit {
-            Some(b) => Place {
-                offset: offset.saturating_add(u32::try_from(b / 8).unwrap_or(0)),
+            .ok_or_else(|| format!("`{}` lies outside the memory image", self.text))?;
+        Ok(match a.part {
+            Part::Bit(_, b) => Place {
+                offset: offset.saturating_add(b / 8),
                 bit: u8::try_from(b % 8).ok(),
                 ty: PlaceType::Elementary(Elementary::Bool),
                 slc_bit: true,
             },
-            None => Place {
+            _ => Place {
                 offset,
                 bit: None,
                 ty: self.ty(),

@@ -91,6 +91,12 @@ fn each_form_is_found_in_the_image_it_is_given() {
             slc_bit: false,
         }
     );
+    let direct = |text: &str| locate(&p, text).ok().and_then(|l| l.direct(&image));
+    assert_eq!(direct("#N7:5"), Some(Ok("N7:8".into())));
+    assert_eq!(direct("T4:[N7:0]/DN"), Some(Ok("T4:1/DN".into())));
+    assert_eq!(direct("N[N7:3]:1"), Some(Ok("N10:1".into())));
+    assert_eq!(direct("B3/[N7:1]"), Some(Ok("B3:1/2".into())));
+    assert_eq!(direct("N7:2"), None);
     // The same locator, another image: another place.
     set(&mut image, 48, 0);
     assert_eq!(at("#N7:5", &image), word_at(74));
