@@ -417,8 +417,20 @@ mod tests {
     #[test]
     fn addresses_print_as_rslogix_writes_them() {
         for text in [
-            "N7:15", "T4:7.ACC", "T4:0/DN", "C5:1/OV", "R6:0.POS", "B3:1/2", "I:1/1",
-            "I:2.1/3", "O:0.1", "S:24", "S:1/15", "F8:3", "N10:2/4", "T4:0.PRE/3",
+            "N7:15",
+            "T4:7.ACC",
+            "T4:0/DN",
+            "C5:1/OV",
+            "R6:0.POS",
+            "B3:1/2",
+            "I:1/1",
+            "I:2.1/3",
+            "O:0.1",
+            "S:24",
+            "S:1/15",
+            "F8:3",
+            "N10:2/4",
+            "T4:0.PRE/3",
         ] {
             assert_eq!(parse(text).map(|a| a.to_string()), Ok(text.to_string()));
         }

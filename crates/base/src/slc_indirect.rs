@@ -134,7 +134,6 @@ pub fn parse(up: &str) -> Result<Indirect, String> {
     })
 }
 
-
 impl Indirect {
     /// The direct addresses it reads the pointers from.
     pub fn pointers(&self) -> impl Iterator<Item = Address> + '_ {

@@ -69,13 +69,14 @@ pub fn locate(program: &Program, text: &str) -> Result<Locator, String> {
     let pointer = |a: Option<Address>| -> Result<Option<Place>, String> {
         a.map(|a| path::resolve_slc_address(program, a)).transpose()
     };
-    let index_register = if ind.indexed {
-        Some(path::resolve(program, "S:24").map_err(|e| {
-            format!("`{t}` is indexed by S:24, which this program has not: {e}")
-        })?)
-    } else {
-        None
-    };
+    let index_register =
+        if ind.indexed {
+            Some(path::resolve(program, "S:24").map_err(|e| {
+                format!("`{t}` is indexed by S:24, which this program has not: {e}")
+            })?)
+        } else {
+            None
+        };
     let letter = ind.addr.ty.letter();
     let mut files: Vec<DataFile> = if ind.file_from.is_some() {
         program
@@ -247,7 +248,10 @@ impl SlcPlace {
         };
         if self.ind.indexed {
             // B, N and F files only: one word (float) per element.
-            let s24 = self.index_register.as_ref().map_or(Ok(0), |p| word(image, p))?;
+            let s24 = self
+                .index_register
+                .as_ref()
+                .map_or(Ok(0), |p| word(image, p))?;
             let i = i64::from(a.index()) + s24;
             if !(0..len).contains(&i) {
                 return Err(format!(

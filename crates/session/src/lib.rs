@@ -42,8 +42,8 @@ pub use symbols::Node;
 
 use automat_ir::Program;
 use automat_project::Sim;
-pub use automat_runtime::Limit;
 use automat_runtime::slc_place::looks_dynamic;
+pub use automat_runtime::Limit;
 use automat_runtime::{
     locate, resolve, resolve_access, value as show, ClockMode, Executor, Locator, Monotonic,
 };
