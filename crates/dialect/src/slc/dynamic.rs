@@ -115,7 +115,81 @@ pub fn fault_marker(k: usize) -> String {
     format!("(* slc check {k} *)")
 }
 
+/// The array name standing for the file of an indirect file operand
+/// (`#N[N7:0]:0`, slot `k`) in an instruction's ST until the `CASE` over
+/// the files of its type replaces it.
+pub fn file_placeholder(k: usize) -> String {
+    format!("__SLC_FILE_{k}__")
+}
+
 impl super::emit::Emitter<'_> {
+    /// `body`, an instruction working on the run of `words` words from the
+    /// file operand `d` (`#N7:[N7:0]`, `#N[N7:0]:[N7:1]`), preceded by the
+    /// ST finding its first word (`__ix[k]`) and checking that the run lies
+    /// in the data file: outside it, an SLC major fault naming the operand.
+    /// With an indirect file number, one copy of `body` per file of the
+    /// type, chosen at run time.
+    pub(super) fn file_run(&mut self, d: &Dynamic, words: u32, body: &str) -> String {
+        let k = d.slot;
+        let run_check = |this: &mut Self, file: u32| -> String {
+            let Some(f) = this.layout.files.get(&file) else {
+                return String::new();
+            };
+            let len = f.elements;
+            let name = format!("{}{file}", f.ty.letter());
+            let what = format!(
+                "file operand `{}`: the run of {words} {} from its first element lies outside data file {name} ({} 0 to {})",
+                d.text,
+                if f.ty == FileType::F { "elements" } else { "words" },
+                if f.ty == FileType::F { "elements" } else { "words" },
+                len.saturating_sub(1)
+            );
+            this.check(&format!("__ix[{k}] + {words} > {len}"), what)
+        };
+        let Some(f) = d.file_from else {
+            let find = self.index_in(d, d.addr.file);
+            let check = run_check(self, d.addr.file);
+            return format!("{find}{check}{body}");
+        };
+        let files: Vec<u32> = self
+            .layout
+            .files
+            .iter()
+            .filter(|(_, f)| f.ty == d.addr.ty)
+            .map(|(n, _)| *n)
+            .collect();
+        let list = files
+            .iter()
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(", ");
+        let mut s = format!(
+            "    __if[{k}] := INT_TO_DINT({});
+    CASE __if[{k}] OF
+",
+            f.st_path().unwrap_or_default()
+        );
+        for &n in &files {
+            let find = self.index_in(d, n);
+            let check = run_check(self, n);
+            let arr = format!("{}{n}", d.addr.ty.letter());
+            let _ = write!(
+                s,
+                "    {n}:\n{find}{check}{}",
+                body.replace(&file_placeholder(k), &arr)
+            );
+        }
+        let what = format!(
+            "file operand `{}`: the file number is not one of the {} files of the project ({list})",
+            d.text,
+            d.addr.ty.letter()
+        );
+        s.push_str("    ELSE\n");
+        s += &self.check(&format!("__if[{k}] = __if[{k}]"), what);
+        s.push_str("    END_CASE;\n");
+        s
+    }
+
     /// A check: the PLC stops (the subrange fault of `__slc_fault`) when
     /// `bad` holds, the fault saying `what` and the instruction.
     pub(super) fn check(&mut self, bad: &str, what: String) -> String {
