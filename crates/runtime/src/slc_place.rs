@@ -55,8 +55,26 @@ struct DataFile {
 /// located here rather than resolved as a path)?
 pub fn looks_dynamic(text: &str) -> bool {
     let t = text.trim();
-    let first = t.trim_start_matches('#').chars().next();
-    slc_indirect::is_dynamic(t) && first.is_some_and(|c| FileType::from_letter(c).is_some())
+    if !slc_indirect::is_dynamic(t) {
+        return false;
+    }
+    // A file letter, its number or `[word]`, then `:` or `/`: `N7:`,
+    // `N[N7:0]:`, `B3/`, `I:` (so an IEC path `inst.arr[3]` is none).
+    let b = t.trim_start_matches('#').as_bytes();
+    if !b
+        .first()
+        .is_some_and(|&c| FileType::from_letter(char::from(c)).is_some())
+    {
+        return false;
+    }
+    let mut i = 1 + b[1..].iter().take_while(|c| c.is_ascii_digit()).count();
+    if i == 1 && b.get(1) == Some(&b'[') {
+        match b[1..].iter().position(|&c| c == b']') {
+            Some(close) => i = close + 2,
+            None => return false,
+        }
+    }
+    matches!(b.get(i), Some(b':' | b'/'))
 }
 
 /// Resolves `text` for reading and writing at run time.
