@@ -159,10 +159,25 @@ fn a_path_takes_no_dynamic_address_and_bad_ones_say_why() {
         locate(&p, "C5:[N7:0].ACC").unwrap_err(),
         "`C5:[N7:0].ACC`: the program has no C5 data file (is this an SLC-500 program?)"
     );
-    for t in ["#N7:5", "N7:[N7:0]", "n[N7:0]:1", "B3/[N7:1]", "I:[N7:0]/1", "#B3:0"] {
+    for t in [
+        "#N7:5",
+        "N7:[N7:0]",
+        "n[N7:0]:1",
+        "B3/[N7:1]",
+        "I:[N7:0]/1",
+        "#B3:0",
+    ] {
         assert!(looks_dynamic(t), "{t}");
     }
-    for t in ["inst.arr[3]", "n7[2]", "N7:1", "B3/4", "main.b[1].x", "#", "N[N7:0"] {
+    for t in [
+        "inst.arr[3]",
+        "n7[2]",
+        "N7:1",
+        "B3/4",
+        "main.b[1].x",
+        "#",
+        "N[N7:0",
+    ] {
         assert!(!looks_dynamic(t), "{t}");
     }
     let l = locate(&p, "B3/[N7:1]").expect("locates");
