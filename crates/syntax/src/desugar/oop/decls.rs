@@ -86,6 +86,7 @@ impl<'a> Oop<'a> {
                     d.ty = TypeSpec::Ref {
                         target: Box::new(d.ty.clone()),
                         span,
+                        reference: false,
                     };
                 }
                 let kind = if poly { VarKind::Input } else { VarKind::InOut };

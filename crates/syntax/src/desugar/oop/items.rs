@@ -317,6 +317,7 @@ impl<'a> Oop<'a> {
                 ty: TypeSpec::Ref {
                     target: Box::new(TypeSpec::Named(Ident { sym: *c, span })),
                     span,
+                    reference: false,
                 },
                 edge: None,
                 init: None,
@@ -398,6 +399,7 @@ impl<'a> Oop<'a> {
                         ty: TypeSpec::Ref {
                             target: Box::new(TypeSpec::Named(id(*c))),
                             span,
+                            reference: false,
                         },
                         edge: None,
                         init: None,
@@ -848,6 +850,7 @@ impl<'a> Oop<'a> {
         let mut pointer = TypeSpec::Ref {
             target: Box::new(target),
             span,
+            reference: false,
         };
         self.retype_spec(&mut pointer, VarKind::InOut);
         let bool_sym = self.sym("BOOL");

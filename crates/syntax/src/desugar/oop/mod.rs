@@ -61,6 +61,7 @@ use std::collections::{HashMap, HashSet};
 /// and interfaces stay, marked `desugared` (later stages ignore them).
 pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Diagnostic> {
     crate::desugar::eno::implicit_eno(units, interner);
+    crate::desugar::reference::desugar_references(units, interner);
     promote_bases(units);
     let mut classes: HashMap<Symbol, (usize, Class)> = HashMap::new();
     let mut itfs: HashMap<Symbol, (usize, Interface)> = HashMap::new();
