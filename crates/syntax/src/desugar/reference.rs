@@ -21,8 +21,8 @@
 
 use crate::ast::oop::Class;
 use crate::ast::{
-    Arg, ArgDir, BinaryOp, Body, Expr, ExprKind, Ident, Item, SourceUnit, Stmt, StmtKind,
-    TypeSpec, VarBlock, VarKind,
+    Arg, ArgDir, BinaryOp, Body, Expr, ExprKind, Ident, Item, SourceUnit, Stmt, StmtKind, TypeSpec,
+    VarBlock, VarKind,
 };
 use crate::parser::reference::REF_BIND;
 use automat_base::{Interner, Symbol};
@@ -476,7 +476,13 @@ impl Refs {
             if binds {
                 self.expr(v, sc, false);
                 if !self.is_reference(v, sc) {
-                    let x = std::mem::replace(v, Expr { kind: ExprKind::Error, span });
+                    let x = std::mem::replace(
+                        v,
+                        Expr {
+                            kind: ExprKind::Error,
+                            span,
+                        },
+                    );
                     *v = self.ref_of(x);
                 }
             } else {
@@ -505,7 +511,8 @@ impl Refs {
             }
             ExprKind::Deref(b) => {
                 let t = self.ty(b, sc)?;
-                self.params.get(&(self.type_name(&self.deref_spec(t))?, None))
+                self.params
+                    .get(&(self.type_name(&self.deref_spec(t))?, None))
             }
             _ => None,
         }
@@ -590,7 +597,10 @@ impl Refs {
                     self.owners.get(&o)?.extends?
                 };
                 Some(TypeSpec::Ref {
-                    target: Box::new(TypeSpec::Named(Ident { sym: c, span: n.span })),
+                    target: Box::new(TypeSpec::Named(Ident {
+                        sym: c,
+                        span: n.span,
+                    })),
                     span: n.span,
                     reference: false,
                 })

@@ -113,13 +113,17 @@ fn calls_through(list: &[Stmt], in_outs: &HashSet<Symbol>) -> bool {
             else_body,
         } => {
             branches.iter().any(|b| calls_through(&b.body, in_outs))
-                || else_body.as_ref().is_some_and(|b| calls_through(b, in_outs))
+                || else_body
+                    .as_ref()
+                    .is_some_and(|b| calls_through(b, in_outs))
         }
         StmtKind::Case {
             arms, else_body, ..
         } => {
             arms.iter().any(|a| calls_through(&a.body, in_outs))
-                || else_body.as_ref().is_some_and(|b| calls_through(b, in_outs))
+                || else_body
+                    .as_ref()
+                    .is_some_and(|b| calls_through(b, in_outs))
         }
         StmtKind::For { body, .. }
         | StmtKind::While { body, .. }
