@@ -14,6 +14,9 @@
 //! - `__ISVALIDREF(r)` is `r <> NULL`.
 //! - An argument given to an input declared `REFERENCE TO T` is bound, not
 //!   copied: `F(r := x)` passes `REF(x)` (so the function writes `x`).
+//! - `rfb(IN := x, Q => q);` writes the inputs and reads the outputs
+//!   through the reference and runs the body with `__RC_<FB>(__x := rfb^)`,
+//!   a FUNCTION calling its VAR_IN_OUT instance (`fb_call`).
 //!
 //! Types are followed as written (TYPE aliases, arrays, structures, the
 //! variables of function blocks and classes with their bases), which is
@@ -33,7 +36,9 @@ pub(crate) fn desugar_references(units: &mut [SourceUnit], interner: &mut Intern
     if !units.iter().any(unit_has_reference) {
         return;
     }
+    let null = interner.intern("NULL");
     let mut r = Refs {
+        called: Vec::new(),
         owners: HashMap::new(),
         aliases: HashMap::new(),
         globals: HashMap::new(),
@@ -41,9 +46,10 @@ pub(crate) fn desugar_references(units: &mut [SourceUnit], interner: &mut Intern
         bind: interner.intern(REF_BIND),
         valid: interner.intern("__ISVALIDREF"),
         reff: interner.intern("REF"),
-        null: interner.intern("NULL"),
+        null,
         this: interner.intern("THIS"),
         super_: interner.intern("SUPER"),
+        interner,
     };
     for unit in units.iter() {
         for item in &unit.items {
@@ -51,8 +57,15 @@ pub(crate) fn desugar_references(units: &mut [SourceUnit], interner: &mut Intern
         }
     }
     for unit in units.iter_mut() {
+        let before = r.called.len();
         for item in &mut unit.items {
             r.rewrite_item(item);
+        }
+        // The wrappers, in the unit of their first call.
+        let new = r.called.get(before..).unwrap_or_default().to_vec();
+        for (fb, at) in new {
+            let item = r.call_wrapper(fb, at);
+            unit.items.push(item);
         }
     }
 }
@@ -150,7 +163,10 @@ struct Scope {
     owner: Option<Symbol>,
 }
 
-struct Refs {
+struct Refs<'a> {
+    interner: &'a mut Interner,
+    /// Function blocks called through a reference: a `__RC_<FB>` each.
+    called: Vec<(Symbol, automat_base::Span)>,
     owners: HashMap<Symbol, Owner>,
     aliases: HashMap<Symbol, TypeSpec>,
     globals: HashMap<Symbol, TypeSpec>,
@@ -169,7 +185,7 @@ const MAX_CHAIN: usize = 70;
 /// TYPE aliases followed at most.
 const MAX_ALIASES: usize = 32;
 
-impl Refs {
+impl Refs<'_> {
     fn collect(&mut self, item: &Item) {
         match item {
             Item::Pou(p) => {
@@ -236,7 +252,7 @@ impl Refs {
         }
     }
 
-    fn rewrite_item(&self, item: &mut Item) {
+    fn rewrite_item(&mut self, item: &mut Item) {
         match item {
             Item::Pou(p) => {
                 let mut locals = HashMap::new();
@@ -287,13 +303,21 @@ impl Refs {
         }
     }
 
-    fn stmts(&self, list: &mut [Stmt], sc: &Scope) {
-        for s in list {
-            self.stmt(s, sc);
+    fn stmts(&mut self, list: &mut Vec<Stmt>, sc: &Scope) {
+        let mut i = 0;
+        while i < list.len() {
+            // `rfb(IN := x);`: plain statements, rewritten in turn.
+            if let Some(b) = list.get(i).and_then(|s| self.fb_call(s, sc)) {
+                list.splice(i..=i, b);
+            }
+            if let Some(s) = list.get_mut(i) {
+                self.stmt(s, sc);
+            }
+            i += 1;
         }
     }
 
-    fn stmt(&self, s: &mut Stmt, sc: &Scope) {
+    fn stmt(&mut self, s: &mut Stmt, sc: &Scope) {
         match &mut s.kind {
             StmtKind::Assign { target, value } => {
                 if let Some(x) = self.bind_source(value) {
@@ -398,7 +422,7 @@ impl Refs {
 
     /// Rewrites `e`'s uses of references; `deref`: `e` itself is used as a
     /// value or place (not bound, not tested by `__ISVALIDREF`).
-    fn expr(&self, e: &mut Expr, sc: &Scope, deref: bool) {
+    fn expr(&mut self, e: &mut Expr, sc: &Scope, deref: bool) {
         match &mut e.kind {
             ExprKind::Member { base, .. } => self.expr(base, sc, true),
             ExprKind::Partial { base, .. } => self.expr(base, sc, true),
@@ -434,7 +458,7 @@ impl Refs {
         }
     }
 
-    fn call(&self, e: &mut Expr, sc: &Scope) {
+    fn call(&mut self, e: &mut Expr, sc: &Scope) {
         let span = e.span;
         let ExprKind::Call { callee, args } = &mut e.kind else {
             return;
@@ -461,12 +485,12 @@ impl Refs {
             }));
             return;
         }
-        let params = self.callee_params(callee, sc);
+        let params = self.callee_params(callee, sc).cloned();
         self.expr(callee, sc, true);
         for (k, a) in args.iter_mut().enumerate() {
             let Some(v) = &mut a.value else { continue };
             let binds = a.dir == ArgDir::In
-                && params.is_some_and(|ps| {
+                && params.as_ref().is_some_and(|ps| {
                     let p = match a.name {
                         Some(n) => ps.iter().find(|(s, _)| *s == n.sym),
                         None => ps.get(k),
@@ -639,5 +663,164 @@ impl Refs {
 
     fn is_reference(&self, e: &Expr, sc: &Scope) -> bool {
         self.ty(e, sc).is_some_and(|t| self.spec_is_reference(&t))
+    }
+}
+
+impl Refs<'_> {
+    /// `rfb(IN := x, Q => q);` for `rfb : REFERENCE TO F` becomes
+    /// `rfb.IN := x; __RC_F(__x := rfb); q := rfb.Q;` (then dereferenced
+    /// like every use): `__RC_F` calls the instance it is given as a
+    /// VAR_IN_OUT, which the code generator can, unlike a call through `^`.
+    fn fb_call(&mut self, s: &Stmt, sc: &Scope) -> Option<Vec<Stmt>> {
+        let StmtKind::Expr(Expr {
+            kind: ExprKind::Call { callee, args },
+            ..
+        }) = &s.kind
+        else {
+            return None;
+        };
+        if !matches!(callee.kind, ExprKind::Name(_) | ExprKind::Member { .. }) {
+            return None;
+        }
+        let t = self.ty(callee, sc)?;
+        let TypeSpec::Ref {
+            target,
+            reference: true,
+            ..
+        } = self.resolve(t)
+        else {
+            return None;
+        };
+        let TypeSpec::Named(fb) = self.resolve(*target) else {
+            return None;
+        };
+        // Positional arguments: left to the checker's message.
+        if args.iter().any(|a| a.name.is_none()) {
+            return None;
+        }
+        let span = s.span;
+        if !self.called.iter().any(|(f, _)| *f == fb.sym) {
+            self.called.push((fb.sym, span));
+        }
+        let field = |m: Ident| Expr {
+            kind: ExprKind::Member {
+                base: callee.clone(),
+                member: m,
+            },
+            span: m.span,
+        };
+        let mut out = Vec::new();
+        let mut after = Vec::new();
+        for a in args {
+            let (Some(n), Some(v)) = (a.name, &a.value) else {
+                continue;
+            };
+            let value = field(n);
+            match a.dir {
+                ArgDir::In => out.push(Stmt {
+                    kind: StmtKind::Assign {
+                        target: value,
+                        value: v.clone(),
+                    },
+                    span: a.span,
+                }),
+                ArgDir::Out | ArgDir::OutNot => {
+                    let value = if a.dir == ArgDir::OutNot {
+                        Expr {
+                            kind: ExprKind::Unary {
+                                op: crate::ast::UnaryOp::Not,
+                                operand: Box::new(value),
+                            },
+                            span: a.span,
+                        }
+                    } else {
+                        value
+                    };
+                    after.push(Stmt {
+                        kind: StmtKind::Assign {
+                            target: v.clone(),
+                            value,
+                        },
+                        span: a.span,
+                    });
+                }
+            }
+        }
+        let wrapper = self.wrapper_name(fb.sym);
+        let x = self.interner.intern("__x");
+        let call = Expr {
+            kind: ExprKind::Call {
+                callee: Box::new(Expr {
+                    kind: ExprKind::Name(Ident {
+                        sym: wrapper,
+                        span: callee.span,
+                    }),
+                    span: callee.span,
+                }),
+                args: vec![Arg {
+                    name: Some(Ident { sym: x, span }),
+                    dir: ArgDir::In,
+                    value: Some((**callee).clone()),
+                    span,
+                }],
+            },
+            span,
+        };
+        out.push(Stmt {
+            kind: StmtKind::Expr(call),
+            span,
+        });
+        out.extend(after);
+        Some(out)
+    }
+
+    fn wrapper_name(&mut self, fb: Symbol) -> Symbol {
+        let n = format!("__RC_{}", self.interner.name(fb));
+        self.interner.intern(&n)
+    }
+
+    /// `FUNCTION __RC_F VAR_IN_OUT __x : F; END_VAR __x(); END_FUNCTION`.
+    /// At the first call's span (for any message about it).
+    fn call_wrapper(&mut self, fb: Symbol, span: automat_base::Span) -> Item {
+        let name = self.wrapper_name(fb);
+        let x = Ident {
+            sym: self.interner.intern("__x"),
+            span,
+        };
+        let call = Expr {
+            kind: ExprKind::Call {
+                callee: Box::new(Expr {
+                    kind: ExprKind::Name(x),
+                    span,
+                }),
+                args: Vec::new(),
+            },
+            span,
+        };
+        Item::Pou(crate::ast::Pou {
+            kind: crate::ast::PouKind::Function,
+            name: Ident { sym: name, span },
+            return_type: None,
+            var_blocks: vec![VarBlock {
+                kind: VarKind::InOut,
+                constant: false,
+                retain: Default::default(),
+                decls: vec![crate::ast::VarDecl {
+                    names: vec![x],
+                    location: None,
+                    ty: TypeSpec::Named(Ident { sym: fb, span }),
+                    edge: None,
+                    init: None,
+                    span,
+                }],
+                span,
+            }],
+            body: Body::St(vec![Stmt {
+                kind: StmtKind::Expr(call),
+                span,
+            }]),
+            lang: crate::ast::Lang::St,
+            span,
+        })
     }
 }
