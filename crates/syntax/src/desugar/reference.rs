@@ -136,7 +136,7 @@ fn vars_of(bs: &[VarBlock], into: &mut HashMap<Symbol, TypeSpec>) {
 }
 
 /// Inputs and in-outs in declaration order (for positional arguments).
-fn params_of(bs: &[VarBlock]) -> Vec<(Symbol, TypeSpec)> {
+fn params_of(bs: &[VarBlock]) -> Params {
     let mut v = Vec::new();
     for b in bs {
         if matches!(b.kind, VarKind::Input | VarKind::InOut) {
@@ -149,6 +149,9 @@ fn params_of(bs: &[VarBlock]) -> Vec<(Symbol, TypeSpec)> {
     }
     v
 }
+
+/// Inputs and in-outs (name, type as written), in declaration order.
+type Params = Vec<(Symbol, TypeSpec)>;
 
 /// A type with variables: a structure, a function block, program or class.
 struct Owner {
@@ -170,8 +173,8 @@ struct Refs<'a> {
     owners: HashMap<Symbol, Owner>,
     aliases: HashMap<Symbol, TypeSpec>,
     globals: HashMap<Symbol, TypeSpec>,
-    /// POU name, or `(class, method)` as the pair's symbols in `methods`.
-    params: HashMap<(Symbol, Option<Symbol>), Vec<(Symbol, TypeSpec)>>,
+    /// The inputs of a POU or class `(name, None)` and of a method `(class, Some(method))`.
+    params: HashMap<(Symbol, Option<Symbol>), Params>,
     bind: Symbol,
     valid: Symbol,
     reff: Symbol,
@@ -517,7 +520,7 @@ impl Refs<'_> {
 
     /// The inputs of what `callee` names: a POU, an instance (its type's),
     /// a method of an instance's class.
-    fn callee_params(&self, callee: &Expr, sc: &Scope) -> Option<&Vec<(Symbol, TypeSpec)>> {
+    fn callee_params(&self, callee: &Expr, sc: &Scope) -> Option<&Params> {
         match &callee.kind {
             ExprKind::Name(n) => match self.lookup(n.sym, sc) {
                 Some(t) => self
@@ -542,7 +545,7 @@ impl Refs<'_> {
         }
     }
 
-    fn method_params(&self, c: Symbol, m: Symbol) -> Option<&Vec<(Symbol, TypeSpec)>> {
+    fn method_params(&self, c: Symbol, m: Symbol) -> Option<&Params> {
         self.chain(c)
             .into_iter()
             .find_map(|k| self.params.get(&(k, Some(m))))
