@@ -11,6 +11,8 @@
 //!   the runtime's fault at that use.
 //! - `r REF= x;` (parsed as `r := __REFBIND(x)`) binds: `r := REF(x)`, or
 //!   `r := r2` when `x` is itself a reference (both bound to one variable).
+//!   In a declaration (`r : REFERENCE TO T REF= x;`) the parser makes it
+//!   the initial value `REF(x)`.
 //! - `__ISVALIDREF(r)` is `r <> NULL`.
 //! - An argument given to an input declared `REFERENCE TO T` is bound, not
 //!   copied: `F(r := x)` passes `REF(x)` (so the function writes `x`).

@@ -3,7 +3,7 @@
 //! it they are still parsed (so the rest of the file checks) and reported.
 
 use super::Parser;
-use crate::ast::{Arg, ArgDir, Expr, ExprKind, Ident, Stmt, StmtKind};
+use crate::ast::{Arg, ArgDir, Expr, ExprKind, Ident, Initializer, Stmt, StmtKind};
 use automat_base::{Code, Diagnostic};
 
 /// The hidden callee `r REF= x` is parsed into (`r := __REFBIND(x)`):
@@ -21,6 +21,34 @@ impl Parser<'_> {
             Diagnostic::error(Code::E005, span, what.to_string())
                 .with_note("check with `--lib codesys` (or `libraries = [\"codesys\"]` in automat.toml) to read CODESYS code"),
         );
+    }
+
+    /// `r : REFERENCE TO T REF= x;`, at `REF`: the initial value `REF(x)`.
+    pub(super) fn ref_bind_init(&mut self) -> Initializer {
+        self.codesys_reference_word("`REF=` binds a CODESYS reference");
+        let op = self.bump();
+        self.bump();
+        let value = self.expr();
+        let span = value.span;
+        let callee = Expr {
+            kind: ExprKind::Name(Ident {
+                sym: self.interner.intern("REF"),
+                span: self.tok_span(op),
+            }),
+            span: self.tok_span(op),
+        };
+        Initializer::Expr(Expr {
+            kind: ExprKind::Call {
+                callee: Box::new(callee),
+                args: vec![Arg {
+                    name: None,
+                    dir: ArgDir::In,
+                    value: Some(value),
+                    span,
+                }],
+            },
+            span,
+        })
     }
 
     /// `target REF= value;`, at `REF`.
