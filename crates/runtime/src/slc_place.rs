@@ -61,9 +61,8 @@ pub fn looks_dynamic(text: &str) -> bool {
     // A file letter, its number or `[word]`, then `:` or `/`: `N7:`,
     // `N[N7:0]:`, `B3/`, `I:` (so an IEC path `inst.arr[3]` is none).
     let b = t.trim_start_matches('#').as_bytes();
-    if !b
-        .first()
-        .is_some_and(|&c| FileType::from_letter(char::from(c)).is_some())
+    if b.first()
+        .is_none_or(|&c| FileType::from_letter(char::from(c)).is_none())
     {
         return false;
     }
