@@ -745,14 +745,20 @@ impl<'a> Tx<'a, '_> {
     /// `a` of callee `g` occupies, when the block's facts prove them
     /// inside the proved extent.
     fn proved_instance(&self, a: Addr, g: &Func) -> Option<(u64, u64)> {
-        let size = u32::try_from(this_extent(g)).ok()?;
-        self.proved_range(a, size)
+        let size = this_extent(g);
+        if a.base == Base::This {
+            // A scalar instance (`tmr(IN := x)`) at a constant offset.
+            let end = (a.offset as u64).checked_add(size)?;
+            return (self.this_safe && end <= self.extent).then_some((a.offset as u64, end));
+        }
+        self.proved_range(a, u32::try_from(size).ok()?)
     }
 
     /// The offset of a register address `proved_range` proved: the plain
     /// sum (it does not wrap, see `signed_offset`).
     fn proved_offset(&mut self, a: Addr) -> Result<Value, JitError> {
         let Base::Reg(r) = a.base else {
+            // `This` inside the proved extent: the plain sum too.
             return Ok(self.offset(a));
         };
         let v = self.get(r)?;
