@@ -129,6 +129,9 @@ pub fn call(ctx: &mut Ctx, op: Builtin, dst: Option<Reg>, args: &[Reg]) -> R {
             set(ctx, from_value(&r));
         }
         Builtin::Str(s, wide) => {
+            if !wide && crate::strplace::narrow(ctx, s, dst, args).is_some() {
+                return Ok(());
+            }
             if wide {
                 strings::<u16>(ctx, s, dst, args, true)?
             } else {
