@@ -1,5 +1,5 @@
-//! STRING functions worked in place in the image: LEN, assignment, LEFT
-//! and CONCAT of two, when every byte they read or write is inside the
+//! STRING functions worked in place in the image: LEN, assignment, LEFT,
+//! CONCAT of two and integer to STRING, when every byte they read or write is inside the
 //! image. Why: the general path (`builtins.rs`) reads every operand into a
 //! `Vec`, builds the result in another and copies it in, several heap
 //! allocations per call; a string loop spent most of its time there.
@@ -8,6 +8,7 @@
 //! path, which also produces every fault, so results are the same bytes.
 
 use crate::interp::Ctx;
+use automat_iec::Elementary as E;
 use automat_ir::code::{Reg, StrFn};
 use automat_ir::strbuf::{self, LEN_BYTES, MAX_LEN};
 
@@ -75,6 +76,30 @@ pub fn narrow(ctx: &mut Ctx, s: StrFn, dst: Option<Reg>, args: &[Reg]) -> Option
     }
 }
 
+/// `<integer>_TO_STRING` in place: the decimal digits, as
+/// `automat_iec::convert` prints an integer, written without allocation.
+pub fn int_text(ctx: &mut Ctx, from: E, args: &[Reg]) -> Option<()> {
+    use std::io::Write;
+    let reg = |ctx: &Ctx, i: usize| args.get(i).map(|&r| ctx.get(r));
+    let (d, cap, bits) = (reg(ctx, 0)? as u32, reg(ctx, 1)? as u32, reg(ctx, 2)?);
+    let mut buf = [0u8; 24];
+    let n = {
+        let mut w = &mut buf[..];
+        // The register holds the value as `builtins::to_value` reads it.
+        match from {
+            E::Sint | E::Int | E::Dint | E::Lint => write!(w, "{}", bits as i64).ok()?,
+            E::Usint | E::Uint | E::Udint | E::Ulint => write!(w, "{bits}").ok()?,
+            _ => return None,
+        }
+        24 - w.len()
+    };
+    let (to, m) = room(ctx.image, d, cap, n)?;
+    ctx.image
+        .get_mut(to..to + m)?
+        .copy_from_slice(buf.get(..m)?);
+    strbuf::set_len(ctx.image, d, m as u32)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -138,6 +163,50 @@ mod tests {
         // Assign onto itself shifted by one byte (overlapping memmove).
         assert!(run(&mut img, StrFn::Assign, &[1, 80, 0], false).0);
         assert_eq!(text(&img, 1), "hello");
+    }
+
+    #[test]
+    fn integer_text_is_the_conversions() {
+        let cases: [(E, u64); 8] = [
+            (E::Int, 0),
+            (E::Int, 20000),
+            (E::Int, -32768i64 as u64),
+            (E::Dint, -7i64 as u64),
+            (E::Lint, i64::MIN as u64),
+            (E::Udint, 4_294_967_295),
+            (E::Ulint, u64::MAX),
+            (E::Usint, 255),
+        ];
+        for (ty, bits) in cases {
+            let mut img = vec![0u8; 40];
+            let mut regs = [0, 80, bits];
+            let mut c = Ctx {
+                image: &mut img,
+                regs: &mut regs,
+                base: 0,
+            };
+            assert!(int_text(&mut c, ty, &[0, 1, 2]).is_some());
+            drop(c);
+            let v = crate::builtins::to_value(bits, ty);
+            let want = match automat_iec::convert(&v, E::String) {
+                Ok(automat_iec::Value::Str(s)) => s,
+                other => panic!("{other:?}"),
+            };
+            assert_eq!(text(&img, 0).into_bytes(), want, "{ty:?} {bits}");
+        }
+        // Room 3: truncated as an assignment truncates.
+        let mut img = vec![0u8; 40];
+        let mut regs = [0, 3, 12345];
+        let mut c = Ctx {
+            image: &mut img,
+            regs: &mut regs,
+            base: 0,
+        };
+        assert!(int_text(&mut c, E::Int, &[0, 1, 2]).is_some());
+        // Not an integer: the general path.
+        assert!(int_text(&mut c, E::Real, &[0, 1, 2]).is_none());
+        drop(c);
+        assert_eq!(text(&img, 0), "123");
     }
 
     #[test]
