@@ -186,7 +186,6 @@ mod tests {
                 base: 0,
             };
             assert!(int_text(&mut c, ty, &[0, 1, 2]).is_some());
-            drop(c);
             let v = crate::builtins::to_value(bits, ty);
             let want = match automat_iec::convert(&v, E::String) {
                 Ok(automat_iec::Value::Str(s)) => s,
@@ -205,7 +204,6 @@ mod tests {
         assert!(int_text(&mut c, E::Int, &[0, 1, 2]).is_some());
         // Not an integer: the general path.
         assert!(int_text(&mut c, E::Real, &[0, 1, 2]).is_none());
-        drop(c);
         assert_eq!(text(&img, 0), "123");
     }
 
