@@ -40,6 +40,7 @@ mod empty;
 mod fst;
 mod pl7;
 mod pragma;
+mod program_access;
 mod sections;
 pub mod slc;
 mod timer;
@@ -386,6 +387,9 @@ pub fn check_sources(
         drop_errors_within(&mut diags, &open);
     }
     if codesys {
+        // A program's variables and actions used from other POUs: hidden
+        // globals first (its VAR_STAT too), before the rewrites below.
+        program_access::rewrite(&mut units, &is_user, interner);
         // VAR_STAT variables become hidden globals first, so the POU gets
         // their VAR_EXTERNAL below.
         codesys::static_vars(&mut units, &is_user, interner, &mut diags);
