@@ -38,6 +38,7 @@ mod children;
 mod codesys;
 mod empty;
 mod fst;
+mod heap;
 mod pl7;
 mod pragma;
 mod program_access;
@@ -99,7 +100,8 @@ impl Dialect {
     pub fn library_file(self) -> Option<&'static str> {
         match self {
             Dialect::Isagraf => Some("<library isagraf>/isagraf.st"),
-            Dialect::Pl7 | Dialect::Fst | Dialect::Codesys => None,
+            Dialect::Codesys => Some("<library codesys>/codesys.st"),
+            Dialect::Pl7 | Dialect::Fst => None,
         }
     }
 
@@ -107,7 +109,8 @@ impl Dialect {
     pub fn library_source(self) -> Option<&'static str> {
         match self {
             Dialect::Isagraf => Some(include_str!("../lib/isagraf.st")),
-            Dialect::Pl7 | Dialect::Fst | Dialect::Codesys => None,
+            Dialect::Codesys => Some(include_str!("../lib/codesys.st")),
+            Dialect::Pl7 | Dialect::Fst => None,
         }
     }
 }
@@ -390,6 +393,12 @@ pub fn check_sources(
         // A program's variables and actions used from other POUs: hidden
         // globals first (its VAR_STAT too), before the rewrites below.
         program_access::rewrite(&mut units, &is_user, interner);
+        // `__NEW` / `__DELETE`: calls of the library's allocator.
+        let heap_lib = sources
+            .files()
+            .find(|(_, f)| Some(f.name.as_str()) == Dialect::Codesys.library_file())
+            .map(|(id, _)| id);
+        heap::rewrite(&mut units, &is_user, heap_lib, interner, &mut diags);
         // VAR_STAT variables become hidden globals first, so the POU gets
         // their VAR_EXTERNAL below.
         codesys::static_vars(&mut units, &is_user, interner, &mut diags);

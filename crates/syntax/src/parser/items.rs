@@ -22,7 +22,10 @@ impl Parser<'_> {
     }
 
     pub(super) fn items(&mut self) -> Vec<Item> {
-        self.items_in(false)
+        let mut items = self.items_in(false);
+        let heap = std::mem::take(&mut self.heap_templates);
+        items.extend(heap.into_iter().map(Item::Globals));
+        items
     }
 
     /// The items of a file, or (`nested`) of a namespace, up to its

@@ -21,6 +21,7 @@ mod config;
 mod control;
 mod decl;
 mod expr;
+mod heap;
 mod il;
 mod init;
 mod items;
@@ -78,6 +79,8 @@ pub struct Parser<'a> {
     il_fb_s: Vec<automat_base::Symbol>,
     /// The dialect's reading rules (`--lib codesys`).
     opts: crate::Options,
+    /// The hidden globals of the `__NEW(T)` calls read (`heap.rs`).
+    heap_templates: Vec<crate::ast::VarBlock>,
 }
 
 /// Parses a lexed file into a [`SourceUnit`]; diagnostics are appended to `diags`.
@@ -110,6 +113,7 @@ pub fn parse_tokens(
         pou_actions: Vec::new(),
         il_fb_r: Vec::new(),
         il_fb_s: Vec::new(),
+        heap_templates: Vec::new(),
     };
     p.lex_error_ends.sort_unstable();
     if p.toks.last().map(|t| t.tok) != Some(Tok::Eof) {
