@@ -138,13 +138,16 @@ impl Heap<'_> {
             e.kind = ExprKind::Error;
             return;
         };
-        let count = args.get_mut(1).and_then(|a| a.value.take()).unwrap_or(Expr {
-            kind: ExprKind::Literal(Box::new(Literal {
-                kind: LitKind::Int(1),
-                ty: None,
-            })),
-            span,
-        });
+        let count = args
+            .get_mut(1)
+            .and_then(|a| a.value.take())
+            .unwrap_or(Expr {
+                kind: ExprKind::Literal(Box::new(Literal {
+                    kind: LitKind::Int(1),
+                    ty: None,
+                })),
+                span,
+            });
         let size = call(self.sizeof, t.span, vec![name(t.sym, t.span)]);
         let init = call(self.adr, t.span, vec![name(t.sym, t.span)]);
         *e = call(self.heap_new, span, vec![size, count, init]);
@@ -169,16 +172,16 @@ impl Visitor for Heap<'_> {
             _ => None,
         };
         let Some(p) = p else {
-            self.error(span, "`__DELETE` takes the one pointer to free: `__DELETE(p);`");
+            self.error(
+                span,
+                "`__DELETE` takes the one pointer to free: `__DELETE(p);`",
+            );
             e.kind = ExprKind::Error;
             return;
         };
         self.used = true;
         let value = call(self.heap_delete, span, vec![p.clone()]);
-        s.kind = StmtKind::Assign {
-            target: p,
-            value,
-        };
+        s.kind = StmtKind::Assign { target: p, value };
     }
 
     fn expr(&mut self, e: &mut Expr) {

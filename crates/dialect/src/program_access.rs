@@ -394,8 +394,9 @@ fn add_externals(
 /// Takes the variables of a used program out of its blocks: the hidden
 /// global blocks (their variables renamed, initial values kept).
 fn hide_vars(blocks: &mut Vec<VarBlock>, prog: &Program) -> Vec<VarBlock> {
-    let (mut moved, rest): (Vec<VarBlock>, Vec<VarBlock>) =
-        std::mem::take(blocks).into_iter().partition(|b| moves(b.kind));
+    let (mut moved, rest): (Vec<VarBlock>, Vec<VarBlock>) = std::mem::take(blocks)
+        .into_iter()
+        .partition(|b| moves(b.kind));
     *blocks = rest;
     let mut kept = Vec::new();
     for b in &mut moved {
@@ -403,8 +404,10 @@ fn hide_vars(blocks: &mut Vec<VarBlock>, prog: &Program) -> Vec<VarBlock> {
         stay.decls.clear();
         b.kind = VarKind::Global;
         for d in std::mem::take(&mut b.decls) {
-            let (global, local): (Vec<Ident>, Vec<Ident>) =
-                d.names.iter().partition(|n| prog.globals.contains_key(&n.sym));
+            let (global, local): (Vec<Ident>, Vec<Ident>) = d
+                .names
+                .iter()
+                .partition(|n| prog.globals.contains_key(&n.sym));
             if !local.is_empty() {
                 stay.decls.push(VarDecl {
                     names: local,

@@ -64,7 +64,11 @@ pub struct Parser<'a> {
     oop_depth: u32,
     /// The CODESYS actions read so far after the current PROGRAM or
     /// FUNCTION (each with the others it calls already in place).
-    pou_actions: Vec<(automat_base::Symbol, Vec<crate::ast::Stmt>, automat_base::Span)>,
+    pou_actions: Vec<(
+        automat_base::Symbol,
+        Vec<crate::ast::Stmt>,
+        automat_base::Span,
+    )>,
     /// In an IL body: the variables declared as standard function blocks
     /// with an input `R` (CTU, CTUD, SR) and with an input `S` (RS), so
     /// that `R ctr` and `S ff` set those inputs as the other FB input
