@@ -412,6 +412,9 @@ pub fn check_sources(
     let mut analysis = automat_sema::check_with(&units, interner, check_opts);
     diags.append(&mut analysis.diagnostics);
     diags.sort_by_key(|d: &Diagnostic| (d.span.file, d.span.start, d.span.end));
+    if codesys {
+        program_access::drop_duplicates(&mut diags);
+    }
     name_xml_elements(sources, &mut diags);
     analysis.diagnostics = diags;
     (units, analysis)

@@ -526,3 +526,27 @@ fn rename_for_vars(stmts: &mut [Stmt], renames: &HashMap<Symbol, Symbol>) {
         }
     }
 }
+
+/// Drops a diagnostic of an action's hidden function when the same error
+/// was reported at the same place already: the action's statements are
+/// checked where the program's body inlines them too.
+pub fn drop_duplicates(diags: &mut Vec<automat_base::Diagnostic>) {
+    let mut seen: HashSet<(automat_base::Span, automat_base::Code)> = HashSet::new();
+    let mut hidden = HashSet::new();
+    for (i, d) in diags.iter().enumerate() {
+        if d.message.contains(PREFIX) {
+            hidden.insert(i);
+        } else {
+            seen.insert((d.span, d.code));
+        }
+    }
+    if hidden.is_empty() {
+        return;
+    }
+    let mut i = 0;
+    diags.retain(|d| {
+        let drop = hidden.contains(&i) && !seen.insert((d.span, d.code));
+        i += 1;
+        !drop
+    });
+}
