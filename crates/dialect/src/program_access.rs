@@ -309,7 +309,7 @@ impl Reach<'_> {
         let ExprKind::Name(id) = &base.kind else {
             return None;
         };
-        if self.declared.contains(&id.sym) || self.own == Some(id.sym) {
+        if self.declared.contains(&id.sym) {
             return None;
         }
         self.programs.get(&id.sym).map(|p| (id.sym, p))
@@ -342,6 +342,17 @@ impl Visitor for Reach<'_> {
                 let Some((sym, prog)) = self.program(base) else {
                     return true;
                 };
+                if self.own == Some(sym) {
+                    // `Main.n` in Main itself is its `n` (renamed with the
+                    // rest of its body when other POUs reach it).
+                    let m = *member;
+                    let local = |d: &VarDecl| d.names.iter().any(|n| n.sym == m.sym);
+                    if prog.globals.contains_key(&m.sym) || prog.for_locals.iter().any(local) {
+                        e.kind = ExprKind::Name(m);
+                        return false;
+                    }
+                    return true;
+                }
                 let Some(&global) = prog.globals.get(&member.sym) else {
                     return true;
                 };
