@@ -27,6 +27,7 @@ mod init;
 mod items;
 mod namespace;
 mod oop;
+pub(crate) mod reference;
 mod sfc;
 mod stmt;
 mod types;
