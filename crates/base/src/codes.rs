@@ -238,7 +238,9 @@ codes! {
     E160 => "VAR_STAT or VAR_INST not allowed here",
         "CODESYS variable sections, read with the CODESYS dialect only (`--lib codesys`): `VAR_STAT` (variables that keep their values between calls, one copy shared by every call and every instance) in a FUNCTION, FUNCTION_BLOCK, PROGRAM or METHOD; `VAR_INST` (variables of a METHOD kept in its function block's instance) only in a METHOD.";
     E161 => "ACTION not supported here",
-        "CODESYS dialect: a V2.3 text export writes a POU's actions after it (`ACTION name: ... END_ACTION`). automat reads those of a FUNCTION_BLOCK as methods without parameters (`name();` in its body, `inst.name();` outside), and those of a PROGRAM or FUNCTION in place of their calls `name();` in its body; such an action cannot RETURN (it would leave the whole POU: use IF). An action before any POU, or outside the CODESYS dialect, is this error too.";
+        "CODESYS dialect: a V2.3 text export writes a POU's actions after it (`ACTION name: ... END_ACTION`). automat reads those of a FUNCTION_BLOCK as methods without parameters (`name();` in its body, `inst.name();` outside), those of a PROGRAM or FUNCTION in place of their calls `name();` in its body, and those of a PROGRAM also from other POUs as `Program.name();`; such an action cannot RETURN (it would leave the whole POU: use IF). An action before any POU, or outside the CODESYS dialect, is this error too.";
+    E162 => "misused __NEW or __DELETE",
+        "CODESYS dialect: `__NEW(T)` and `__NEW(T, n)` take a type (and a count) and return a `POINTER TO T` into the heap, 0 when it is full; `__DELETE(p)` is a statement of its own that frees what `p` points to and sets `p` to 0.";
     E170 => "malformed PLCopen XML",
         "A `.xml` source is not well-formed XML, or its root element is not a PLCopen TC6 `project` (schema 2.01 or 2.0). The message gives the XML parser's reason; the location is where it stopped.";
     E171 => "unsupported PLCopen element",

@@ -310,8 +310,8 @@ fn external_of(block: &VarBlock) -> VarBlock {
 }
 
 /// Renames the uses of VAR_STAT variables to their hidden globals.
-struct Rename<'a> {
-    renames: &'a HashMap<Symbol, Symbol>,
+pub(crate) struct Rename<'a> {
+    pub(crate) renames: &'a HashMap<Symbol, Symbol>,
 }
 
 impl Visitor for Rename<'_> {

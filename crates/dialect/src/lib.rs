@@ -38,8 +38,10 @@ mod children;
 mod codesys;
 mod empty;
 mod fst;
+mod heap;
 mod pl7;
 mod pragma;
+mod program_access;
 mod sections;
 pub mod slc;
 mod timer;
@@ -98,7 +100,8 @@ impl Dialect {
     pub fn library_file(self) -> Option<&'static str> {
         match self {
             Dialect::Isagraf => Some("<library isagraf>/isagraf.st"),
-            Dialect::Pl7 | Dialect::Fst | Dialect::Codesys => None,
+            Dialect::Codesys => Some("<library codesys>/codesys.st"),
+            Dialect::Pl7 | Dialect::Fst => None,
         }
     }
 
@@ -106,7 +109,8 @@ impl Dialect {
     pub fn library_source(self) -> Option<&'static str> {
         match self {
             Dialect::Isagraf => Some(include_str!("../lib/isagraf.st")),
-            Dialect::Pl7 | Dialect::Fst | Dialect::Codesys => None,
+            Dialect::Codesys => Some(include_str!("../lib/codesys.st")),
+            Dialect::Pl7 | Dialect::Fst => None,
         }
     }
 }
@@ -386,6 +390,15 @@ pub fn check_sources(
         drop_errors_within(&mut diags, &open);
     }
     if codesys {
+        // A program's variables and actions used from other POUs: hidden
+        // globals first (its VAR_STAT too), before the rewrites below.
+        program_access::rewrite(&mut units, &is_user, interner);
+        // `__NEW` / `__DELETE`: calls of the library's allocator.
+        let heap_lib = sources
+            .files()
+            .find(|(_, f)| Some(f.name.as_str()) == Dialect::Codesys.library_file())
+            .map(|(id, _)| id);
+        heap::rewrite(&mut units, &is_user, heap_lib, interner, &mut diags);
         // VAR_STAT variables become hidden globals first, so the POU gets
         // their VAR_EXTERNAL below.
         codesys::static_vars(&mut units, &is_user, interner, &mut diags);
@@ -399,6 +412,9 @@ pub fn check_sources(
     let mut analysis = automat_sema::check_with(&units, interner, check_opts);
     diags.append(&mut analysis.diagnostics);
     diags.sort_by_key(|d: &Diagnostic| (d.span.file, d.span.start, d.span.end));
+    if codesys {
+        program_access::drop_duplicates(&mut diags);
+    }
     name_xml_elements(sources, &mut diags);
     analysis.diagnostics = diags;
     (units, analysis)

@@ -302,7 +302,11 @@ fn instance_symbols(
             Slot::External => {
                 // `Inst.g` of a VAR_EXTERNAL is the global `g` (as the
                 // program's code sees it): the same place, for --print,
-                // scenarios and monitoring.
+                // scenarios and monitoring. A CODESYS program's own
+                // variable kept as the global `Main.x` has that path already.
+                if cx.interner.name(v.name).contains('.') {
+                    continue;
+                }
                 if let Some(&(offset, bit, ty)) = cx.globals.get(&v.name) {
                     let ty = symbols::symbol_type(&mut cx.layout, cx.interner, ty, 0);
                     entries.push(SymbolEntry {

@@ -28,7 +28,7 @@ pub enum Fit {
 /// CODESYS pointers (`--lib codesys`): a pointer converts to a pointer of
 /// any other type and to and from the unsigned integers and bit strings
 /// of 32 and 64 bits (`ADR` results in a DWORD, as V2.3 code keeps
-/// them). A pointer is a 32-bit image offset: a 64-bit value keeps its
+/// them); the constant 0 is the null pointer. A pointer is a 32-bit image offset: a 64-bit value keeps its
 /// low 32 bits, and every dereference is checked against the image.
 pub fn pointer_cast(types: &TypeTable, from: &Typed, to: TypeId) -> bool {
     use crate::types::Elem;
@@ -39,6 +39,10 @@ pub fn pointer_cast(types: &TypeTable, from: &Typed, to: TypeId) -> bool {
             TypeKind::Elem(Elem::Udint | Elem::Dword | Elem::Ulint | Elem::Lword)
         )
     };
+    // `p := 0;`: the null pointer, as CODESYS code clears one.
+    if is_ref(to) && from.value.as_ref().and_then(Value::as_int) == Some(0) {
+        return true;
+    }
     match from.ty {
         Ty::Of(f) => (is_ref(f) && (is_ref(to) || addr_int(to))) || (addr_int(f) && is_ref(to)),
         Ty::RefOf(_) => is_ref(to) || addr_int(to),

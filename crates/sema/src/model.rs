@@ -225,6 +225,9 @@ pub struct Model {
     /// The CODESYS dialect's checking rules (`--lib codesys`, see
     /// [`crate::Options`]); lowering reads types through the same flag.
     pub codesys: bool,
+    /// The function blocks that were written as `CLASS` (desugared into
+    /// function blocks): messages name them as classes.
+    pub classes: rustc_hash::FxHashSet<Symbol>,
 }
 
 impl Model {

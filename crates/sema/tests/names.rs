@@ -321,3 +321,22 @@ VAR c : Counter; END_VAR
 END_PROGRAM",
     );
 }
+
+#[test]
+fn a_hidden_or_missing_member_names_a_class_as_a_class() {
+    let m = messages(
+        "CLASS Calc\nVAR total : INT; END_VAR\nMETHOD Add : INT\nAdd := total;\nEND_METHOD\nEND_CLASS\n\
+         FUNCTION_BLOCK Fb\nVAR hidden : INT; END_VAR\nhidden := 1;\nEND_FUNCTION_BLOCK\n\
+         PROGRAM Main\nVAR c : Calc; f : Fb; i : INT; END_VAR\n\
+         i := c.total;\ni := c.nothing;\ni := f.hidden;\ni := f.nothing;\nEND_PROGRAM",
+    );
+    assert_eq!(
+        m,
+        [
+            "`total` is not an input or output of class `Calc`",
+            "class `Calc` has no member `nothing`",
+            "`hidden` is not an input or output of function block `Fb`",
+            "function block `Fb` has no member `nothing`",
+        ]
+    );
+}

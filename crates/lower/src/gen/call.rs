@@ -113,7 +113,9 @@ impl Gen<'_, '_> {
                 }
                 self.place(callee)
             }
-            ExprKind::Member { .. } | ExprKind::Index { .. } => self.place(callee),
+            ExprKind::Member { .. } | ExprKind::Index { .. } | ExprKind::Deref(_) => {
+                self.place(callee)
+            }
             _ => Err(Failed),
         }
     }

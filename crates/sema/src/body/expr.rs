@@ -517,9 +517,10 @@ impl<'m> Checker<'m> {
                         }
                     }
                     Some(_) => {
+                        let kind = self.fb_kind_word(fb_name);
                         self.err(Code::E024, member.span, |c| {
                             format!(
-                                "`{}` is not an input or output of function block `{}`",
+                                "`{}` is not an input or output of {kind} `{}`",
                                 c.name(member.sym),
                                 c.name(fb_name)
                             )
@@ -527,9 +528,10 @@ impl<'m> Checker<'m> {
                         Typed::ERROR
                     }
                     None => {
+                        let kind = self.fb_kind_word(fb_name);
                         self.err(Code::E024, member.span, |c| {
                             format!(
-                                "function block `{}` has no member `{}`",
+                                "{kind} `{}` has no member `{}`",
                                 c.name(fb_name),
                                 c.name(member.sym)
                             )
@@ -539,6 +541,16 @@ impl<'m> Checker<'m> {
                 }
             }
             _ => self.no_members(base, b.ty),
+        }
+    }
+
+    /// How messages name a function block's type: `class` for one
+    /// written as `CLASS` (the desugaring made it a function block).
+    fn fb_kind_word(&self, name: automat_base::Symbol) -> &'static str {
+        if self.model.classes.contains(&name) {
+            "class"
+        } else {
+            "function block"
         }
     }
 

@@ -30,7 +30,12 @@ impl<'a> Builder<'a> {
                     Item::Globals(block) => self.add_block(0, block),
                     Item::Config(c) => self.add_config(c),
                     // Replaced by plain items (`automat_syntax::desugar_oop`).
-                    Item::Class(_) | Item::Interface(_) => {}
+                    Item::Class(c) => {
+                        if c.kind == ast::oop::ClassKind::Class {
+                            self.classes.insert(c.name.sym);
+                        }
+                    }
+                    Item::Interface(_) => {}
                     // Replaced by its items (`automat_syntax::desugar_namespaces`).
                     Item::Namespace(_) => {}
                 }

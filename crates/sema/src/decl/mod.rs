@@ -147,6 +147,8 @@ pub(crate) struct Builder<'a> {
     /// The section of the variable whose initial value is being checked
     /// (a `REF(x)` initial value is refused in VAR_TEMP and VAR_IN_OUT).
     init_section: Option<Section>,
+    /// Names of the `CLASS`es (see `Model::classes`).
+    classes: rustc_hash::FxHashSet<automat_base::Symbol>,
 }
 
 /// The result of phase 1: the model without bodies checked, the
@@ -187,6 +189,7 @@ pub(crate) fn declare<'a>(
         configs: Vec::new(),
         depth: 0,
         init_section: None,
+        classes: rustc_hash::FxHashSet::default(),
     };
     b.collect(units, stdlib);
     b.index_globals();
@@ -397,6 +400,7 @@ impl<'a> Builder<'a> {
             },
             syms: self.syms,
             codesys: false,
+            classes: self.classes,
         };
         let mut diags = self.diags;
         diags.extend(cycles::instance_cycles(&model, self.interner));

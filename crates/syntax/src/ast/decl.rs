@@ -191,8 +191,14 @@ pub enum TypeSpec {
     },
     /// `STRUCT a : INT := 1; b : BOOL; END_STRUCT`
     Struct { members: Vec<VarDecl>, span: Span },
-    /// `REF_TO T` (IEC 61131-3 3rd edition) or `POINTER TO T` (CODESYS).
-    Ref { target: Box<TypeSpec>, span: Span },
+    /// `REF_TO T` (IEC 61131-3 3rd edition) or `POINTER TO T` (CODESYS);
+    /// `reference`: CODESYS's `REFERENCE TO T`, used without `^`
+    /// (`desugar::reference` makes it a plain `REF_TO` before checking).
+    Ref {
+        target: Box<TypeSpec>,
+        span: Span,
+        reference: bool,
+    },
 }
 
 impl TypeSpec {

@@ -34,4 +34,5 @@ pub(crate) mod eno;
 pub(crate) mod il;
 pub(crate) mod namespace;
 pub(crate) mod oop;
+pub(crate) mod reference;
 pub(crate) mod sfc;

@@ -140,7 +140,7 @@ impl Remap<'_> {
                 }
                 self.s(span);
             }
-            TypeSpec::Ref { target, span } => {
+            TypeSpec::Ref { target, span, .. } => {
                 self.ty(target);
                 self.s(span);
             }

@@ -233,6 +233,8 @@ impl Parser<'_> {
         };
         let init = if self.eat(Tok::ColonEq) {
             Some(self.initializer())
+        } else if self.is_word("REF") && self.nth(1) == Tok::Eq {
+            Some(self.ref_bind_init())
         } else {
             None
         };

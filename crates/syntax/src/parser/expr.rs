@@ -394,6 +394,8 @@ impl Parser<'_> {
     pub(super) fn primary(&mut self) -> Expr {
         if self.at(Tok::LParen) {
             self.paren()
+        } else if self.at_heap_new() {
+            self.heap_new()
         } else {
             self.leaf()
         }

@@ -105,6 +105,10 @@ impl Parser<'_> {
         if self.gap_has_line_break(t.end, next.start) {
             return true;
         }
+        // `r REF= x;` binds a CODESYS reference named like `R` or `S`.
+        if self.word_at(i + 1, "REF") && self.nth(i + 2) == Tok::Eq {
+            return false;
+        }
         matches!(
             next.tok,
             Tok::Ident(_)

@@ -22,7 +22,10 @@ impl Parser<'_> {
     }
 
     pub(super) fn items(&mut self) -> Vec<Item> {
-        self.items_in(false)
+        let mut items = self.items_in(false);
+        let heap = std::mem::take(&mut self.heap_templates);
+        items.extend(heap.into_iter().map(Item::Globals));
+        items
     }
 
     /// The items of a file, or (`nested`) of a namespace, up to its
@@ -31,6 +34,9 @@ impl Parser<'_> {
         let mut items = Vec::new();
         loop {
             let before = self.pos;
+            if !matches!(self.peek(), Tok::Kw(Kw::Action)) {
+                self.program_actions(&mut items);
+            }
             match self.peek() {
                 Tok::Eof => break,
                 Tok::Ident(_) if nested && self.is_word("END_NAMESPACE") => break,
@@ -78,7 +84,37 @@ impl Parser<'_> {
                 self.bump();
             }
         }
+        self.program_actions(&mut items);
         items
+    }
+
+    /// After the last action of a PROGRAM: each action also as a hidden
+    /// function `__ACTION_<program>_<action>` (its statements, the other
+    /// actions inlined), for the calls `Program.Action();` from other POUs.
+    /// The `codesys` dialect makes the program's variables visible to it,
+    /// or drops it when no other POU calls it (`automat_dialect::codesys`).
+    fn program_actions(&mut self, items: &mut Vec<Item>) {
+        let actions = std::mem::take(&mut self.pou_actions);
+        let Some(Item::Pou(program)) = items.last() else {
+            return;
+        };
+        if program.kind != PouKind::Program {
+            return;
+        }
+        let owner = self.interner.name(program.name.sym).to_string();
+        for (name, body, span) in actions {
+            let hidden = format!("__ACTION_{owner}_{}", self.interner.name(name));
+            let sym = self.interner.intern(&hidden);
+            items.push(Item::Pou(Pou {
+                kind: PouKind::Function,
+                name: crate::ast::Ident { sym, span },
+                return_type: None,
+                var_blocks: Vec::new(),
+                body: Body::St(body),
+                lang: Lang::St,
+                span,
+            }));
+        }
     }
 
     /// CODESYS V2.3 `ACTION name: statements END_ACTION` after a POU (as
@@ -166,15 +202,15 @@ impl Parser<'_> {
                 // The actions read before, in this one; this one, in them
                 // and in the body.
                 let mut body = method.body;
-                for (other, its) in &self.pou_actions {
+                for (other, its, _) in &self.pou_actions {
                     inline_calls(&mut body, *other, its);
                 }
-                for (_, its) in &mut self.pou_actions {
+                for (_, its, _) in &mut self.pou_actions {
                     inline_calls(its, method.name.sym, &body);
                 }
                 let crate::ast::Body::St(stmts) = &mut p.body;
                 inline_calls(stmts, method.name.sym, &body);
-                self.pou_actions.push((method.name.sym, body));
+                self.pou_actions.push((method.name.sym, body, span));
             }
             _ => self.report(automat_base::Diagnostic::error(
                 automat_base::Code::E161,

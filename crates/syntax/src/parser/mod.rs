@@ -21,11 +21,13 @@ mod config;
 mod control;
 mod decl;
 mod expr;
+mod heap;
 mod il;
 mod init;
 mod items;
 mod namespace;
 mod oop;
+pub(crate) mod reference;
 mod sfc;
 mod stmt;
 mod types;
@@ -63,7 +65,11 @@ pub struct Parser<'a> {
     oop_depth: u32,
     /// The CODESYS actions read so far after the current PROGRAM or
     /// FUNCTION (each with the others it calls already in place).
-    pou_actions: Vec<(automat_base::Symbol, Vec<crate::ast::Stmt>)>,
+    pou_actions: Vec<(
+        automat_base::Symbol,
+        Vec<crate::ast::Stmt>,
+        automat_base::Span,
+    )>,
     /// In an IL body: the variables declared as standard function blocks
     /// with an input `R` (CTU, CTUD, SR) and with an input `S` (RS), so
     /// that `R ctr` and `S ff` set those inputs as the other FB input
@@ -78,6 +84,8 @@ pub struct Parser<'a> {
     il_fb_s: Vec<automat_base::Symbol>,
     /// The dialect's reading rules (`--lib codesys`).
     opts: crate::Options,
+    /// The hidden globals of the `__NEW(T)` calls read (`heap.rs`).
+    heap_templates: Vec<crate::ast::VarBlock>,
 }
 
 /// Parses a lexed file into a [`SourceUnit`]; diagnostics are appended to `diags`.
@@ -110,6 +118,7 @@ pub fn parse_tokens(
         pou_actions: Vec::new(),
         il_fb_r: Vec::new(),
         il_fb_s: Vec::new(),
+        heap_templates: Vec::new(),
     };
     p.lex_error_ends.sort_unstable();
     if p.toks.last().map(|t| t.tok) != Some(Tok::Eof) {

@@ -191,6 +191,9 @@ impl Parser<'_> {
                 span,
             };
         }
+        if self.is_word("REF") && self.nth(1) == Tok::Eq {
+            return self.ref_bind(start, target);
+        }
         let span = self.span_from(start);
         if matches!(target.kind, ExprKind::Call { .. } | ExprKind::Error) {
             self.end_stmt("after the call");

@@ -35,12 +35,18 @@ impl Parser<'_> {
             Tok::Kw(Kw::Array) => self.array_type(),
             Tok::Kw(Kw::RefTo) => {
                 self.bump();
-                self.ref_target(start)
+                self.ref_target(start, false)
             }
             Tok::Kw(Kw::Pointer) if self.nth(1) == Tok::Kw(Kw::To) => {
                 self.bump();
                 self.bump();
-                self.ref_target(start)
+                self.ref_target(start, false)
+            }
+            _ if self.is_word("REFERENCE") && self.nth(1) == Tok::Kw(Kw::To) => {
+                self.codesys_reference_word("`REFERENCE TO` is a CODESYS reference type");
+                self.bump();
+                self.bump();
+                self.ref_target(start, true)
             }
             Tok::Kw(Kw::Struct) => Some(self.struct_type()),
             _ => self.simple_type(),
@@ -102,11 +108,12 @@ impl Parser<'_> {
         }
     }
 
-    fn ref_target(&mut self, start: u32) -> Option<TypeSpec> {
+    fn ref_target(&mut self, start: u32, reference: bool) -> Option<TypeSpec> {
         let target = self.type_spec()?;
         Some(TypeSpec::Ref {
             target: Box::new(target),
             span: self.span_from(start),
+            reference,
         })
     }
 

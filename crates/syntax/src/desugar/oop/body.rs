@@ -67,6 +67,12 @@ impl<'a> Oop<'a> {
                     }
                 }
             }
+            // `r^(...)` through a reference to a base class: plain
+            // statements, rewritten in turn by the loop.
+            if let Some(b) = list.get(i).and_then(|s| self.body_call(s, cx)) {
+                list.splice(i..=i, b);
+                continue;
+            }
             if let Some(s) = list.get_mut(i) {
                 self.stmt(s, cx);
             }

@@ -86,6 +86,7 @@ impl<'a> Oop<'a> {
                     d.ty = TypeSpec::Ref {
                         target: Box::new(d.ty.clone()),
                         span,
+                        reference: false,
                     };
                 }
                 let kind = if poly { VarKind::Input } else { VarKind::InOut };
@@ -117,38 +118,121 @@ impl<'a> Oop<'a> {
     /// `(__id := <class of v>, __r<id> := REF(v))`; `:= NULL` is no
     /// instance (the structure's default).
     pub(super) fn itf_inits(&mut self, blocks: &mut [VarBlock], cx: &Ctx) {
+        // The initial values of the interface variables (and references to
+        // a base class) of these declarations, as written: one of them may
+        // be initialised from another.
+        let mut sources: HashMap<Symbol, Option<Expr>> = HashMap::new();
+        // (A VAR_EXTERNAL's value is the global's, not known here.)
+        for b in blocks.iter().filter(|b| b.kind != VarKind::External) {
+            for decl in &b.decls {
+                if self.itf_decl(&decl.ty).is_some() {
+                    let init = match &decl.init {
+                        Some(Initializer::Expr(e)) => Some(e.clone()),
+                        _ => None,
+                    };
+                    for n in &decl.names {
+                        sources.insert(n.sym, init.clone());
+                    }
+                }
+            }
+        }
         for b in blocks.iter_mut() {
             for decl in &mut b.decls {
-                self.itf_init(decl, cx);
+                self.itf_init(decl, cx, &sources);
             }
         }
     }
 
-    fn itf_init(&mut self, decl: &mut VarDecl, cx: &Ctx) {
-        let Some(Initializer::Expr(init)) = &decl.init else {
-            return;
-        };
-        // The interface the declaration stands for, and whether the value
-        // is written as a reference (`REF(x)`).
-        let (itf, by_ref) = match &decl.ty {
+    /// The interface a declaration stands for, and whether its value is
+    /// written as a reference (`REF(x)`, a `REF_TO` of a base class).
+    fn itf_decl(&self, ty: &TypeSpec) -> Option<(Symbol, bool)> {
+        match ty {
             TypeSpec::Named(id)
                 if self.itfs.contains_key(&id.sym) && !self.poly_class.contains_key(&id.sym) =>
             {
-                (id.sym, false)
+                Some((id.sym, false))
             }
             TypeSpec::Ref { target, .. } => match &**target {
-                TypeSpec::Named(id) => match self.poly.get(&id.sym) {
-                    Some(i) => (*i, true),
-                    None => return,
-                },
-                _ => return,
+                TypeSpec::Named(id) => self.poly.get(&id.sym).map(|i| (*i, true)),
+                _ => None,
             },
-            _ => return,
+            _ => None,
+        }
+    }
+
+    /// `d2 : IDevice := d1;`: follows `d1` (of these declarations, of the
+    /// same interface or one extending it) to its own initial value.
+    /// `None` when the declaration ends up with no instance (or an error).
+    fn itf_init_source(
+        &mut self,
+        mut init: Expr,
+        itf: Symbol,
+        sources: &HashMap<Symbol, Option<Expr>>,
+        cx: &Ctx,
+    ) -> Option<Expr> {
+        let mut seen: Vec<Symbol> = Vec::new();
+        loop {
+            let mut e = &init;
+            while let ExprKind::Paren(i) = &e.kind {
+                e = i;
+            }
+            let ExprKind::Name(n) = e.kind else {
+                return Some(init);
+            };
+            let T::Itf(j) = self.type_of(e, cx) else {
+                return Some(init);
+            };
+            let (vn, jn, iname) = (self.name(n.sym), self.name(j), self.name(itf));
+            let Some(src) = sources.get(&n.sym) else {
+                self.err(
+                    Code::E039,
+                    init.span,
+                    format!("`{vn}` is not declared here: an interface variable's initial value is an instance, NULL or another interface variable of the same declarations"),
+                );
+                return None;
+            };
+            if !self.itf_chain(j).contains(&itf) {
+                let msg = match (self.poly_class.get(&j), self.poly_class.get(&itf)) {
+                    (Some(a), Some(b)) => {
+                        let (an, bn) = (self.name(*a), self.name(*b));
+                        format!("`{vn}` is a reference to `{an}`, which is not derived from `{bn}`")
+                    }
+                    _ => format!("`{vn}` is of interface `{jn}`, which is not `{iname}` and does not extend it"),
+                };
+                self.err(Code::E212, init.span, msg);
+                return None;
+            }
+            if seen.contains(&n.sym) {
+                self.err(
+                    Code::E039,
+                    init.span,
+                    format!("interface variables initialised from each other (through `{vn}`): one of them needs an instance or NULL"),
+                );
+                return None;
+            }
+            seen.push(n.sym);
+            match src {
+                Some(v) if !self.is_nothing(v) => init = v.clone(),
+                _ => return None,
+            }
+        }
+    }
+
+    fn itf_init(&mut self, decl: &mut VarDecl, cx: &Ctx, sources: &HashMap<Symbol, Option<Expr>>) {
+        let Some(Initializer::Expr(init)) = &decl.init else {
+            return;
+        };
+        let Some((itf, by_ref)) = self.itf_decl(&decl.ty) else {
+            return;
         };
         if self.is_nothing(init) {
             decl.init = None;
             return;
         }
+        let Some(init) = self.itf_init_source(init.clone(), itf, sources, cx) else {
+            decl.init = None;
+            return;
+        };
         let span = init.span;
         let inst = if by_ref {
             match &init.kind {
@@ -163,7 +247,7 @@ impl<'a> Oop<'a> {
                 _ => return,
             }
         } else {
-            init.clone()
+            init
         };
         let T::Class(c) = self.type_of(&inst, cx) else {
             return;

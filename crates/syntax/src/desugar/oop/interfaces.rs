@@ -267,23 +267,7 @@ impl<'a> Oop<'a> {
         let f = format!("__IQ_{}__{}", self.name(a), self.name(b));
         let f = self.sym(&f);
         let (sa, sb) = (self.sym("__a"), self.sym("__b"));
-        let named = |n: Symbol, v: &Expr| Arg {
-            name: Some(Ident { sym: n, span }),
-            dir: ArgDir::In,
-            value: Some(v.clone()),
-            span,
-        };
-        let new_args = vec![named(sa, src), named(sb, dst)];
-        *e = Expr {
-            kind: ExprKind::Call {
-                callee: Box::new(Expr {
-                    kind: ExprKind::Name(Ident { sym: f, span }),
-                    span,
-                }),
-                args: new_args,
-            },
-            span,
-        };
+        *e = named_call(f, [(sa, src.clone()), (sb, dst.clone())], span);
         true
     }
 
@@ -333,23 +317,30 @@ impl<'a> Oop<'a> {
         let f = self.sym(&f);
         self.itf_pointers.push((a, target, f));
         let (sa, sp) = (self.sym("__a"), self.sym("__p"));
-        let named = |n: Symbol, v: &Expr| Arg {
+        *e = named_call(f, [(sa, src.clone()), (sp, dst.clone())], span);
+        true
+    }
+}
+
+/// `f(a := x, b := y)`: the call `__QUERYINTERFACE` and `__QUERYPOINTER` become.
+fn named_call(f: Symbol, args: [(Symbol, Expr); 2], span: Span) -> Expr {
+    let args = args
+        .into_iter()
+        .map(|(n, v)| Arg {
             name: Some(Ident { sym: n, span }),
             dir: ArgDir::In,
-            value: Some(v.clone()),
+            value: Some(v),
             span,
-        };
-        let new_args = vec![named(sa, src), named(sp, dst)];
-        *e = Expr {
-            kind: ExprKind::Call {
-                callee: Box::new(Expr {
-                    kind: ExprKind::Name(Ident { sym: f, span }),
-                    span,
-                }),
-                args: new_args,
-            },
-            span,
-        };
-        true
+        })
+        .collect();
+    Expr {
+        kind: ExprKind::Call {
+            callee: Box::new(Expr {
+                kind: ExprKind::Name(Ident { sym: f, span }),
+                span,
+            }),
+            args,
+        },
+        span,
     }
 }

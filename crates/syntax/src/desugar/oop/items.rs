@@ -317,6 +317,7 @@ impl<'a> Oop<'a> {
                 ty: TypeSpec::Ref {
                     target: Box::new(TypeSpec::Named(Ident { sym: *c, span })),
                     span,
+                    reference: false,
                 },
                 edge: None,
                 init: None,
@@ -398,6 +399,7 @@ impl<'a> Oop<'a> {
                         ty: TypeSpec::Ref {
                             target: Box::new(TypeSpec::Named(id(*c))),
                             span,
+                            reference: false,
                         },
                         edge: None,
                         init: None,
@@ -505,7 +507,6 @@ impl<'a> Oop<'a> {
                 args
             };
             let mut arms = Vec::new();
-            let mut first = None;
             for (c, f) in &fields {
                 let target = self.method_fn(*c, m.name.sym);
                 let this = Expr {
@@ -527,31 +528,17 @@ impl<'a> Oop<'a> {
                         span,
                     }
                 };
-                if first.is_none() {
-                    first = Some(stmt.clone());
-                }
-                arms.push(CaseArm {
-                    labels: vec![CaseLabel::Value(int_e(i128::from(
-                        self.ids.get(c).copied().unwrap_or(0),
-                    )))],
-                    body: vec![stmt],
-                    span,
-                });
+                arms.push((
+                    i128::from(self.ids.get(c).copied().unwrap_or(0)),
+                    vec![stmt],
+                ));
             }
-            let body = if arms.is_empty() {
-                Vec::new()
-            } else {
-                vec![Stmt {
-                    kind: StmtKind::Case {
-                        selector: member_e(name_e(osym), id_sym),
-                        arms,
-                        // No instance: the first class's reference is NULL,
-                        // and dereferencing it is the runtime's fault.
-                        else_body: first.map(|s| vec![s]),
-                    },
-                    span,
-                }]
-            };
+            // No instance: the first class's reference is NULL, and
+            // dereferencing it is the runtime's fault.
+            let body: Vec<Stmt> =
+                super::poly::dispatch_case(member_e(name_e(osym), id_sym), arms, true, span)
+                    .into_iter()
+                    .collect();
             let mut var_blocks = vec![VarBlock {
                 kind: VarKind::Input,
                 constant: false,
@@ -708,26 +695,21 @@ impl<'a> Oop<'a> {
                 })),
                 span,
             };
-            arms.push(CaseArm {
-                labels: vec![CaseLabel::Value(int_e(i128::from(n)))],
-                body: vec![
+            arms.push((
+                i128::from(n),
+                vec![
                     assign(member_e(name_e(bsym), id_sym), int_e(i128::from(n))),
                     assign(member_e(name_e(bsym), field), member_e(name_e(asym), field)),
                     assign(name_e(fsym), true_e),
                 ],
-                span,
-            });
+            ));
         }
-        if !arms.is_empty() {
-            body.push(Stmt {
-                kind: StmtKind::Case {
-                    selector: member_e(name_e(asym), id_sym),
-                    arms,
-                    else_body: None,
-                },
-                span,
-            });
-        }
+        body.extend(super::poly::dispatch_case(
+            member_e(name_e(asym), id_sym),
+            arms,
+            false,
+            span,
+        ));
         let sa = format!("__ITF_{}", self.name(a));
         let sb = format!("__ITF_{}", self.name(b));
         let (sa, sb) = (self.sym(&sa), self.sym(&sb));
@@ -794,15 +776,9 @@ impl<'a> Oop<'a> {
             let n = self.ids.get(&c).copied().unwrap_or(0);
             let field = format!("__r{n}");
             let field = self.sym(&field);
-            arms.push(CaseArm {
-                labels: vec![CaseLabel::Value(Expr {
-                    kind: ExprKind::Literal(Box::new(Literal {
-                        kind: LitKind::Int(i128::from(n)),
-                        ty: None,
-                    })),
-                    span,
-                })],
-                body: vec![
+            arms.push((
+                i128::from(n),
+                vec![
                     assign(name_e(psym), member_e(name_e(asym), field)),
                     assign(
                         name_e(fsym),
@@ -815,19 +791,14 @@ impl<'a> Oop<'a> {
                         },
                     ),
                 ],
-                span,
-            });
+            ));
         }
-        if !arms.is_empty() {
-            body.push(Stmt {
-                kind: StmtKind::Case {
-                    selector: member_e(name_e(asym), id_sym),
-                    arms,
-                    else_body: None,
-                },
-                span,
-            });
-        }
+        body.extend(super::poly::dispatch_case(
+            member_e(name_e(asym), id_sym),
+            arms,
+            false,
+            span,
+        ));
         let sa = format!("__ITF_{}", self.name(a));
         let sa = self.sym(&sa);
         let decl = |n: Symbol, ty: TypeSpec| VarDecl {
@@ -848,6 +819,7 @@ impl<'a> Oop<'a> {
         let mut pointer = TypeSpec::Ref {
             target: Box::new(target),
             span,
+            reference: false,
         };
         self.retype_spec(&mut pointer, VarKind::InOut);
         let bool_sym = self.sym("BOOL");

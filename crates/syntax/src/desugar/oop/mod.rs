@@ -33,12 +33,16 @@
 //!   the class number returning the reference to that instance's field;
 //!   a property's GET/SET through them is `__BG_`/`__BS_<B^>__p`, the
 //!   same CASE calling the class's `__PG_`/`__PS_`.
+//!   `r^(IN := a, Q => b);` is `r^.IN := a; r^.__BODY(); b := r^.Q;`
+//!   (`body_call.rs`: the root of the family has the hidden method
+//!   `__BODY`, whose copy in each class runs that class's body).
 //!   `REF(d)` and a reference to a derived class convert (`__IC_`); a
 //!   reference to a base does not go into a reference to a derived class.
 //!
 //! Every misuse is reported here, at the source's names (E200–E213).
 
 mod body;
+mod body_call;
 mod decls;
 mod interfaces;
 mod items;
@@ -61,6 +65,7 @@ use std::collections::{HashMap, HashSet};
 /// and interfaces stay, marked `desugared` (later stages ignore them).
 pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Diagnostic> {
     crate::desugar::eno::implicit_eno(units, interner);
+    crate::desugar::reference::desugar_references(units, interner);
     promote_bases(units);
     let mut classes: HashMap<Symbol, (usize, Class)> = HashMap::new();
     let mut itfs: HashMap<Symbol, (usize, Interface)> = HashMap::new();
@@ -91,6 +96,7 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
     if classes.is_empty() && itfs.is_empty() {
         return diags;
     }
+    body_call::add_body_methods(units, &mut classes, interner);
     let poly = poly_bases(&classes, &order, &mut itfs, interner);
     let mut d = Oop::new(interner, &classes, &itfs, &order);
     d.poly_class = poly.iter().map(|(c, i)| (*i, *c)).collect();

@@ -352,7 +352,6 @@ impl<'a> Oop<'a> {
             span,
         };
         let mut arms = Vec::new();
-        let mut first = None;
         for c in self.implementors(i) {
             let k = self.ids.get(&c).copied().unwrap_or(0);
             let r = format!("__r{k}");
@@ -384,33 +383,11 @@ impl<'a> Oop<'a> {
                 },
                 span,
             };
-            if first.is_none() {
-                first = Some(stmt.clone());
-            }
-            arms.push(CaseArm {
-                labels: vec![CaseLabel::Value(Expr {
-                    kind: ExprKind::Literal(Box::new(Literal {
-                        kind: LitKind::Int(i128::from(k)),
-                        ty: None,
-                    })),
-                    span,
-                })],
-                body: vec![stmt],
-                span,
-            });
+            arms.push((i128::from(k), vec![stmt]));
         }
-        let body = if arms.is_empty() {
-            Vec::new()
-        } else {
-            vec![Stmt {
-                kind: StmtKind::Case {
-                    selector: member_e(name_e(osym), id_sym),
-                    arms,
-                    else_body: first.map(|s| vec![s]),
-                },
-                span,
-            }]
-        };
+        let body: Vec<Stmt> = dispatch_case(member_e(name_e(osym), id_sym), arms, true, span)
+            .into_iter()
+            .collect();
         let decl = |n: Symbol, t: TypeSpec| VarDecl {
             names: vec![id(n)],
             location: None,
@@ -480,7 +457,6 @@ impl<'a> Oop<'a> {
             Some((_, VarKind::Input | VarKind::Output))
         );
         let mut arms = Vec::new();
-        let mut first = None;
         for c in self.implementors(i) {
             let k = self.ids.get(&c).copied().unwrap_or(0);
             let r = format!("__r{k}");
@@ -505,39 +481,18 @@ impl<'a> Oop<'a> {
                 },
                 span,
             };
-            if first.is_none() {
-                first = Some(stmt.clone());
-            }
-            arms.push(CaseArm {
-                labels: vec![CaseLabel::Value(Expr {
-                    kind: ExprKind::Literal(Box::new(Literal {
-                        kind: LitKind::Int(i128::from(k)),
-                        ty: None,
-                    })),
-                    span,
-                })],
-                body: vec![stmt],
-                span,
-            });
+            arms.push((i128::from(k), vec![stmt]));
         }
-        let body = if arms.is_empty() {
-            Vec::new()
-        } else {
-            vec![Stmt {
-                kind: StmtKind::Case {
-                    selector: member_e(name_e(osym), id_sym),
-                    arms,
-                    else_body: first.map(|s| vec![s]),
-                },
-                span,
-            }]
-        };
+        let body: Vec<Stmt> = dispatch_case(member_e(name_e(osym), id_sym), arms, true, span)
+            .into_iter()
+            .collect();
         Some(Item::Pou(Pou {
             kind: PouKind::Function,
             name: id(fsym),
             return_type: Some(TypeSpec::Ref {
                 target: Box::new(ty),
                 span,
+                reference: false,
             }),
             var_blocks: vec![VarBlock {
                 kind: VarKind::Input,
@@ -561,6 +516,48 @@ impl<'a> Oop<'a> {
 }
 
 /// `f(a, b, …)` with positional arguments.
+/// `CASE <selector> OF k: body; ... END_CASE`, the dispatch on an
+/// interface value's class number (`None` without arms). `else_first`: with
+/// no instance (`__id` 0) the first arm runs, whose reference is NULL, so
+/// its dereference is the runtime's fault.
+pub(super) fn dispatch_case(
+    selector: Expr,
+    arms: Vec<(i128, Vec<Stmt>)>,
+    else_first: bool,
+    span: Span,
+) -> Option<Stmt> {
+    let else_body = if else_first {
+        arms.first().map(|(_, b)| b.clone())
+    } else {
+        None
+    };
+    let arms: Vec<CaseArm> = arms
+        .into_iter()
+        .map(|(k, body)| CaseArm {
+            labels: vec![CaseLabel::Value(Expr {
+                kind: ExprKind::Literal(Box::new(Literal {
+                    kind: LitKind::Int(k),
+                    ty: None,
+                })),
+                span,
+            })],
+            body,
+            span,
+        })
+        .collect();
+    if arms.is_empty() {
+        return None;
+    }
+    Some(Stmt {
+        kind: StmtKind::Case {
+            selector,
+            arms,
+            else_body,
+        },
+        span,
+    })
+}
+
 pub(super) fn call_expr(f: Symbol, args: Vec<Expr>, span: Span) -> Expr {
     Expr {
         kind: ExprKind::Call {

@@ -110,6 +110,7 @@ impl<'a> Oop<'a> {
             return_type: Some(TypeSpec::Ref {
                 target: Box::new(ty),
                 span,
+                reference: false,
             }),
             var_blocks: vec![VarBlock {
                 kind: VarKind::InOut,
