@@ -452,7 +452,9 @@ fn run_all(shared: &Shared, items: &[Item], jobs: usize, mut each: impl FnMut(Re
                         let Some(item) = items.get(take.item) else {
                             break;
                         };
-                        if tx.send((take.item, shared.item(item))).is_err() {
+                        let report = shared.item(item);
+                        queue.done(take.item);
+                        if tx.send((take.item, report)).is_err() {
                             break;
                         }
                     }
