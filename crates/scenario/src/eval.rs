@@ -69,6 +69,9 @@ impl Ref {
     pub fn read(&self, image: &[u8], sim: &Sim) -> Val {
         match &self.src {
             Src::Place(p) => read_place(image, p),
+            Src::Located(l) => l
+                .place(image)
+                .map_or(Val::N(f64::NAN), |p| read_place(image, &p)),
             Src::Signal(i) => to_val(sim.plant().get(*i)),
             Src::Quantity(i) => Val::N(sim.plant().quantity(*i)),
         }
@@ -78,6 +81,10 @@ impl Ref {
     pub fn show(&self, image: &[u8], sim: &Sim) -> String {
         match &self.src {
             Src::Place(p) => value::format(image, p),
+            Src::Located(l) => match l.place(image) {
+                Ok(p) => value::format(image, &p),
+                Err(e) => format!("? ({e})"),
+            },
             Src::Signal(i) => show_value(sim.plant().get(*i)),
             Src::Quantity(i) => show_f64(sim.plant().quantity(*i)),
         }

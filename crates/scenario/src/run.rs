@@ -30,7 +30,7 @@
 //! fault of the program fails the scenario.
 
 use crate::ast::{self, Anchor, Scenario, When};
-use crate::check::{Cond, Ctx, NoPlant, Ref, Scope, Src};
+use crate::check::{Cond, Ctx, LocatedWrite, NoPlant, Ref, Scope, Src};
 use crate::eval::{same, show_f64, show_value, Frame, Val};
 use automat_base::Diagnostic;
 use automat_engine::Engine;
@@ -137,6 +137,8 @@ struct React {
     event: Cond,
     delay_ns: i64,
     actions: Vec<(i64, Action)>,
+    /// Its sets of indexed or indirect addresses (times after the firing).
+    located: Vec<LocatedWrite>,
 }
 
 fn t(ns: i64) -> String {
@@ -178,9 +180,30 @@ pub fn prepare(scope: &Scope, scn: &Scenario) -> Result<Prepared, Vec<Diagnostic
         }
     }
     let mut actions = Vec::new();
+    let mut pending = Vec::new();
+    let mut failures = Vec::new();
     for a in &scn.actions {
-        match scope.action(a) {
-            Ok(list) => actions.extend(list),
+        match scope.actions(a) {
+            Ok((list, located)) => {
+                actions.extend(list);
+                for w in located {
+                    // Due before the first scan: found in the initial image.
+                    if w.at_ns <= 0 {
+                        match w.loc.place(&scope.program.initial_image) {
+                            Ok(place) => actions.push((
+                                w.at_ns,
+                                Action::Write {
+                                    place,
+                                    value: w.value,
+                                },
+                            )),
+                            Err(e) => failures.push(set_failure(&w, e)),
+                        }
+                    } else {
+                        pending.push(w);
+                    }
+                }
+            }
             Err(d) => errors.push(d),
         }
     }
@@ -191,11 +214,12 @@ pub fn prepare(scope: &Scope, scn: &Scenario) -> Result<Prepared, Vec<Diagnostic
             kind: r.kind.clone(),
             line: r.line,
         };
-        match (scope.event(&r.event, &mut refs), scope.action(&action)) {
-            (Ok(event), Ok(actions)) => reactions.push(React {
+        match (scope.event(&r.event, &mut refs), scope.actions(&action)) {
+            (Ok(event), Ok((actions, located))) => reactions.push(React {
                 event,
                 delay_ns: r.delay_ns,
                 actions,
+                located,
             }),
             (Err(d), _) | (_, Err(d)) => errors.push(d),
         }
@@ -222,9 +246,11 @@ pub fn prepare(scope: &Scope, scn: &Scenario) -> Result<Prepared, Vec<Diagnostic
             started: false,
             checks,
             reactions,
-            failures: Vec::new(),
+            failures,
             last_ns: 0,
             duration_ns: scn.duration_ns,
+            pending,
+            cycle_ns: 0,
         },
     })
 }
@@ -374,6 +400,22 @@ pub struct Judge {
     failures: Vec<Failure>,
     last_ns: i64,
     duration_ns: i64,
+    /// Sets of indexed or indirect addresses not yet due.
+    pending: Vec<LocatedWrite>,
+    /// The run's cycle time: a set due before the next scan is placed
+    /// after this one.
+    cycle_ns: i64,
+}
+
+/// A set whose indexed or indirect address lies outside its data file.
+fn set_failure(w: &LocatedWrite, reason: String) -> Failure {
+    Failure {
+        what: format!("set {}", w.name),
+        line: w.line,
+        at_ns: w.at_ns,
+        reason,
+        values: String::new(),
+    }
 }
 
 /// What one check comes to at a scan: nothing yet, passed, or failed.
@@ -399,7 +441,16 @@ impl Judge {
             failures: Vec::new(),
             last_ns: 0,
             duration_ns: 0,
+            pending: Vec::new(),
+            cycle_ns: 0,
         }
+    }
+
+    /// The run's cycle time (the PLC time between two scans): a set of an
+    /// indexed or indirect address finds its place in the image of the
+    /// last scan before it is due.
+    pub fn set_cycle(&mut self, cycle_ns: i64) {
+        self.cycle_ns = cycle_ns;
     }
 
     /// The names the scenario reads.
@@ -447,6 +498,7 @@ impl Judge {
 
     /// After the scan at `now`: reads the values, judges, fires reactions.
     pub fn after_scan(&mut self, now: i64, image: &[u8], sim: &RefCell<Sim>) {
+        let step = self.cycle_ns.max(now.saturating_sub(self.last_ns));
         self.last_ns = now;
         self.scans += 1;
         {
@@ -508,6 +560,32 @@ impl Judge {
                 let at = now.saturating_add(r.delay_ns);
                 for (off, a) in &r.actions {
                     s.schedule(at.saturating_add(*off), a.clone());
+                }
+                self.pending.extend(r.located.iter().map(|w| LocatedWrite {
+                    at_ns: at.saturating_add(w.at_ns),
+                    ..w.clone()
+                }));
+            }
+        }
+        // The sets due before the next scan, at the places this image names.
+        let horizon = now.saturating_add(step);
+        let (due, later): (Vec<LocatedWrite>, Vec<LocatedWrite>) =
+            std::mem::take(&mut self.pending)
+                .into_iter()
+                .partition(|w| w.at_ns <= horizon);
+        self.pending = later;
+        for w in due {
+            match w.loc.place(image) {
+                Ok(place) => sim.borrow_mut().schedule(
+                    w.at_ns,
+                    Action::Write {
+                        place,
+                        value: w.value,
+                    },
+                ),
+                Err(e) => {
+                    let f = set_failure(&w, e);
+                    self.failures.push(f);
                 }
             }
         }
@@ -838,6 +916,7 @@ impl Observer {
             line.push(',');
             let cell = match &c.src {
                 ColSrc::Src(Src::Place(p)) => value::format(image, p),
+                ColSrc::Src(Src::Located(l)) => l.format(image),
                 ColSrc::Src(Src::Signal(i)) => show_value(sim.plant().get(*i)),
                 ColSrc::Src(Src::Quantity(i)) => show_f64(sim.plant().quantity(*i)),
                 ColSrc::Steps(c) => c.cell(image),
@@ -936,7 +1015,8 @@ pub fn run_on<E: Executor + 'static, W: Write>(
         plant: plant.as_ref(),
         bindings: &bindings,
     };
-    let Prepared { actions, judge } = prepare(&scope, scn)?;
+    let Prepared { actions, mut judge } = prepare(&scope, scn)?;
+    judge.set_cycle(project.cycle_time_ns);
     let seed = scn
         .seed
         .or(project.plant.as_ref().map(|p| p.seed))
