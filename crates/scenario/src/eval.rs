@@ -261,4 +261,19 @@ impl Cond {
             Cond::Bool(_) | Cond::Num(_) | Cond::Count(_) => {}
         }
     }
+
+    /// Whether it looks at the values after the previous scan (`prev`,
+    /// `rise`, `fall`, `change`).
+    pub fn uses_prev(&self) -> bool {
+        match self {
+            Cond::Prev(_) | Cond::Rise(_) | Cond::Fall(_) | Cond::Change(_) => true,
+            Cond::Not(x) | Cond::Neg(x) | Cond::Abs(x) => x.uses_prev(),
+            Cond::Logic(_, a, b)
+            | Cond::Cmp(_, a, b)
+            | Cond::Arith(_, a, b)
+            | Cond::Min(a, b)
+            | Cond::Max(a, b) => a.uses_prev() || b.uses_prev(),
+            Cond::Ref(_) | Cond::Bool(_) | Cond::Num(_) | Cond::Count(_) => false,
+        }
+    }
 }

@@ -113,6 +113,12 @@ struct Check {
     line: u32,
     /// Indexes into the refs this condition names, for the failure values.
     names: Vec<usize>,
+    /// Every ref it evaluates (its condition, counts and event), and
+    /// whether it needs them after the previous scan too (`prev`, `rise`,
+    /// ...): then they are read at every scan until it is done, else only
+    /// at the scans it is judged at (see [`Judge::after_scan`]).
+    reads: Vec<usize>,
+    uses_prev: bool,
     done: bool,
     /// Event windows still open (their start times), oldest first.
     open: VecDeque<i64>,
@@ -224,12 +230,19 @@ pub fn prepare(scope: &Scope, scn: &Scenario) -> Result<Prepared, Vec<Diagnostic
         return Err(errors);
     }
     let n = refs.len();
+    let mut always = Vec::new();
+    for r in &reactions {
+        r.event.refs(&mut always);
+    }
     Ok(Prepared {
         actions,
         judge: Judge {
             refs,
             vals: Vec::with_capacity(n),
             prev: Vec::with_capacity(n),
+            always,
+            read_at: vec![0; n],
+            scans: 0,
             started: false,
             checks,
             reactions,
@@ -282,6 +295,20 @@ fn check_of(scope: &Scope, e: &ast::Expect, refs: &mut Vec<Ref>) -> Result<Check
     for c in &counts {
         c.refs(&mut names);
     }
+    let mut reads = names.clone();
+    let mut uses_prev = cond.uses_prev() || counts.iter().any(Cond::uses_prev);
+    if let Win::Within {
+        after: Start::Event(ev),
+        ..
+    }
+    | Win::Stable {
+        after: Start::Event(ev),
+        ..
+    } = &win
+    {
+        ev.refs(&mut reads);
+        uses_prev |= ev.uses_prev();
+    }
     // The counts as written, for the failure's values (the checker numbers
     // them left to right, as this walk meets them).
     let mut spans = Vec::new();
@@ -305,6 +332,8 @@ fn check_of(scope: &Scope, e: &ast::Expect, refs: &mut Vec<Ref>) -> Result<Check
         text: e.text.clone(),
         line: e.line,
         names,
+        reads,
+        uses_prev,
         done: false,
         open: VecDeque::new(),
         seen: false,
@@ -354,8 +383,17 @@ fn count_spans(e: &ast::Expr, out: &mut Vec<automat_base::Span>) {
 /// by scan (see the module comment).
 pub struct Judge {
     refs: Vec<Ref>,
+    /// The values after this scan and after the previous one, by ref; an
+    /// entry nobody evaluates at a scan is not read then (it keeps an older
+    /// value that nothing looks at).
     vals: Vec<Val>,
     prev: Vec<Val>,
+    /// The refs of the reactions' events, read at every scan.
+    always: Vec<usize>,
+    /// The scan (counted from 1; 0: before the first) at which each ref
+    /// was last read.
+    read_at: Vec<u64>,
+    scans: u64,
     started: bool,
     checks: Vec<Check>,
     reactions: Vec<React>,
@@ -394,6 +432,9 @@ impl Judge {
             refs: Vec::new(),
             vals: Vec::new(),
             prev: Vec::new(),
+            always: Vec::new(),
+            read_at: Vec::new(),
+            scans: 0,
             started: false,
             checks: Vec::new(),
             reactions: Vec::new(),
@@ -422,6 +463,8 @@ impl Judge {
         self.prev.clear();
         self.prev
             .extend(self.refs.iter().map(|r| r.read(image, sim)));
+        self.vals.clone_from(&self.prev);
+        self.read_at.iter_mut().for_each(|s| *s = self.scans);
         self.started = true;
     }
 
@@ -457,15 +500,34 @@ impl Judge {
     pub fn after_scan(&mut self, now: i64, image: &[u8], sim: &RefCell<Sim>) {
         let step = self.cycle_ns.max(now.saturating_sub(self.last_ns));
         self.last_ns = now;
+        self.scans += 1;
         {
             let s = sim.borrow();
-            self.vals.clear();
-            self.vals
-                .extend(self.refs.iter().map(|r| r.read(image, &s)));
-        }
-        if !self.started {
-            self.prev.clone_from(&self.vals);
-            self.started = true;
+            if !self.started {
+                self.start(image, &s);
+            } else {
+                // Only what is evaluated at this scan (most expectations
+                // wait for their time, or are done): the same verdicts as
+                // reading every name every scan.
+                let mut read = |i: usize| {
+                    if let (Some(at), Some(r), Some(v)) = (
+                        self.read_at.get_mut(i),
+                        self.refs.get(i),
+                        self.vals.get_mut(i),
+                    ) {
+                        if *at != self.scans {
+                            *at = self.scans;
+                            *v = r.read(image, &s);
+                        }
+                    }
+                };
+                self.always.iter().for_each(|&i| read(i));
+                for c in &self.checks {
+                    if !c.done && (now >= c.wake_ns || c.uses_prev) {
+                        c.reads.iter().for_each(|&i| read(i));
+                    }
+                }
+            }
         }
         for k in 0..self.checks.len() {
             let verdict = match self.checks.get_mut(k) {
@@ -548,8 +610,16 @@ impl Judge {
     pub fn finish(mut self, image: &[u8], sim: &Sim) -> Vec<Failure> {
         let end = self.last_ns;
         let duration = self.duration_ns;
-        // The values after the last scan (`after_scan` moved them).
-        let vals = std::mem::take(&mut self.prev);
+        // The values after the last scan (`after_scan` moved them); what
+        // was not read then is read now (nothing changed them since).
+        let mut vals = std::mem::take(&mut self.prev);
+        for (i, r) in self.refs.iter().enumerate() {
+            if let (Some(&at), Some(v)) = (self.read_at.get(i), vals.get_mut(i)) {
+                if at != self.scans {
+                    *v = r.read(image, sim);
+                }
+            }
+        }
         for k in 0..self.checks.len() {
             let Some(c) = self.checks.get_mut(k) else {
                 continue;
