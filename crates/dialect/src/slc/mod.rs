@@ -321,6 +321,37 @@ mod tests {
         assert!(matches!(power("O:2/0"), Some(Some(_))));
     }
 
+    /// A JSR inside a branch stands in the rung's network with its frame;
+    /// the subroutine's rungs, lowered inside that rung, have their own
+    /// frames, under ids of their own.
+    #[test]
+    fn a_jsr_in_a_branch_has_a_power_frame() {
+        let mut map = SourceMap::new();
+        map.add(
+            "t.slc",
+            "LAD 2 M\nXIC I:1/0 BST JSR U:3 NXB XIC I:1/1 BND OTE O:0/0\nLAD 3 S\nSBR\nXIC I:1/5 BST ADD N7:0 1 N7:0 NXB XIC I:1/6 BND OTE O:0/2\n",
+        );
+        let sheets = live_sheets(&map);
+        let power = |text: &str| -> Option<String> {
+            sheets.iter().find_map(|s| {
+                let node = s.sheet.nodes.iter().find(|n| n.text.starts_with(text))?;
+                s.live
+                    .iter()
+                    .find(|l| l.node == node.id)
+                    .and_then(|l| l.power.clone())
+            })
+        };
+        let frames: Vec<Option<String>> = ["JSR", "O:0/0", "ADD", "O:0/2"]
+            .iter()
+            .map(|t| power(t))
+            .collect();
+        assert!(frames.iter().all(Option::is_some), "{frames:?}");
+        let mut unique = frames.clone();
+        unique.sort();
+        unique.dedup();
+        assert_eq!(unique.len(), frames.len(), "{frames:?}");
+    }
+
     /// The drawing's notes: above a contact its operand's description,
     /// above a box each described operand's symbol and description.
     #[test]

@@ -18,8 +18,10 @@
 //! instances would keep a second copy of that state. JSR, JMP, RET, TND,
 //! MCR, LBL and SBR steer the scan: on the rung itself the network is cut
 //! there (the power so far into `__rc`, their ST, the next segment from a
-//! contact on `__rc`); a rung with one inside a branch stays all ST
-//! (`emit.rs`'s `__bs`/`__bo` branch slots).
+//! contact on `__rc`); inside a branch they stand in it as a box does (a
+//! JSR's subroutine lowered there, its element ids past the segment's).
+//! Only a rung whose branches do not close stays all ST (`emit.rs`'s
+//! `__bs`/`__bo` branch slots, with the diagnostics for it).
 
 use super::emit::Emitter;
 use super::parse::{Elem, Ins, Rung};
@@ -31,8 +33,8 @@ fn in_model(mn: &str) -> bool {
     matches!(mn, "XIC" | "XIO" | "OTE" | "OTL" | "OTU")
 }
 
-/// Instructions that change where scanning goes: inside a branch they keep
-/// the rung ST.
+/// Instructions that change where scanning goes: on the rung itself they
+/// cut the network.
 fn steers(mn: &str) -> bool {
     matches!(mn, "JSR" | "JMP" | "LBL" | "RET" | "TND" | "MCR" | "SBR")
 }
@@ -46,17 +48,14 @@ fn dynamic_bit(i: &Ins) -> bool {
         .any(|o| matches!(o, super::parse::Operand::Dyn(_)))
 }
 
-/// Can the rung go through the model (no JSR, JMP, RET, TND or MCR inside
-/// a branch)?
+/// Can the rung go through the model (its branches closed)?
 pub fn fits(rung: &Rung) -> bool {
     let mut depth = 0usize;
     for e in &rung.elems {
         match e {
             Elem::Bst(_) => depth += 1,
             Elem::Bnd(_) => depth = depth.saturating_sub(1),
-            Elem::Nxb(_) => {}
-            Elem::Ins(i) if depth > 0 && steers(i.mn) => return false,
-            Elem::Ins(_) => {}
+            Elem::Nxb(_) | Elem::Ins(_) => {}
         }
     }
     depth == 0
@@ -74,6 +73,9 @@ struct Segment {
     /// The ST instructions inside its branches: the hidden BOOL their
     /// power goes into and their ST, run where the lowered network sets it.
     inner: Vec<(String, String)>,
+    /// The id of its first element: its ids are `first..` in the order
+    /// the builder adds them.
+    first: u32,
 }
 
 impl<'a> Emitter<'a> {
@@ -92,6 +94,7 @@ impl<'a> Emitter<'a> {
             open: Vec::new(),
             used: false,
             inner: Vec::new(),
+            first: self.next_id,
         }
     }
 
@@ -109,7 +112,11 @@ impl<'a> Emitter<'a> {
             &seg.power,
         );
         let net = seg.b.finish();
-        self.next_id += net.elements.len() as u32;
+        // A JSR inside the segment moved `next_id` past the ids it kept
+        // for itself (see `rung_network`).
+        self.next_id = self
+            .next_id
+            .max(seg.first.saturating_add(net.elements.len() as u32));
         let l = lower(
             &net,
             &PouCtx::new("SLC", false).with_id_word("rung element"),
@@ -196,6 +203,14 @@ impl<'a> Emitter<'a> {
                     self.elements
                         .entry((i.span.file, i.span.start))
                         .or_insert(coil);
+                    if i.mn == "JSR" {
+                        // The subroutine's rungs are lowered now, inside
+                        // this segment: their ids start past every id this
+                        // rung's segment can take (at most a rail, the
+                        // `__rc` contact and coil, and two per element).
+                        let room = 2 * rung.elems.len() as u32 + 4;
+                        self.next_id = self.next_id.max(seg.first.saturating_add(room));
+                    }
                     let code = self.ins(n, r, i, level);
                     seg.inner.push((
                         into.clone(),
