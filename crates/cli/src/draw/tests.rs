@@ -315,7 +315,8 @@ fn slc_rungs_are_drawn_as_ladder() {
 
 /// The SLC crane's ladder in the HMI's live drawings: LAD 2 as `automat
 /// draw` draws it, run in the program `SLC`, its contacts and coils framed
-/// by the `__ld_n<id>` power flow of the rung networks, each showing its
+/// by the `__ld_n<id>` power flow of the rung networks (its boxes too),
+/// each showing its
 /// bit, the dwell timer its ACC.
 #[test]
 fn live_drawings_of_the_slc_ladder() {
@@ -338,24 +339,29 @@ fn live_drawings_of_the_slc_ladder() {
             .find(|e| e.text == text)
             .map(|e| (e.kind, e.power.clone(), e.value.clone(), e.pins.len()))
     };
-    // R1a: XIC Pornire (ids 5, 6: the rung network's rail and `__rc`
-    // contact), then the OSR (a box: ST, no power of its own).
-    assert_eq!(
-        shown("Pornire I:1/1"),
-        Some(("contact", Some("__ld_n7".into()), Some("I:1/1".into()), 0))
-    );
+    // R0: OSR B3/0 (ids 1, 2: the rung network's rail and `__rc`
+    // contact): a box, its frame the power into it (the coil on
+    // `__bin<k>` standing for it, id 3). R1a: XIC Pornire (ids 7, 8 the
+    // rail and `__rc` contact after R0's six elements).
     let osr = lad.elements.iter().find(|e| e.text.starts_with("OSR"));
     assert!(
-        osr.is_some_and(|e| e.power.is_none() && e.kind == "block"),
+        osr.is_some_and(|e| e.power.as_deref() == Some("__ld_n3") && e.kind == "block"),
         "{osr:?}"
     );
-    let powered = lad.elements.iter().filter(|e| e.power.is_some()).count();
-    let bits = lad
+    assert_eq!(
+        shown("Pornire I:1/1"),
+        Some(("contact", Some("__ld_n9".into()), Some("I:1/1".into()), 0))
+    );
+    let unframed: Vec<&str> = lad
         .elements
         .iter()
-        .filter(|e| matches!(e.kind, "contact" | "coil"))
-        .count();
-    assert_eq!(powered, bits, "every contact and coil has its power flow");
+        .filter(|e| matches!(e.kind, "contact" | "coil" | "block") && e.power.is_none())
+        .map(|e| e.text.as_str())
+        .collect();
+    assert!(
+        unframed.is_empty(),
+        "every contact, coil and box has its power flow: {unframed:?}"
+    );
     let ton = lad.elements.iter().find(|e| e.text.starts_with("TON"));
     let pins: Vec<(&str, &str)> = ton
         .map(|e| {

@@ -462,7 +462,7 @@ def slc(base, token):
     es = ds[0]["elements"] if ds else []
     pornire = [e for e in es if e["text"] == "Pornire I:1/1"]
     check("slc drawings: XIC Pornire framed by its power flow, showing its bit",
-          [(e.get("power"), e.get("value")) for e in pornire] == [(".__ld_n7", "I:1/1")], pornire)
+          [(e.get("power"), e.get("value")) for e in pornire] == [(".__ld_n9", "I:1/1")], pornire)
     ton = [e for e in es if e["text"].startswith("TON")]
     check("slc drawings: the TON shows its ACC",
           [[(p["name"], p["path"]) for p in e["pins"]] for e in ton] == [[("ACC", "T4:0.ACC")]], ton)
