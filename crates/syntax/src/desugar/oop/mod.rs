@@ -353,6 +353,7 @@ fn promote_bases(units: &mut [SourceUnit]) {
                 extends: None,
                 implements: Vec::new(),
                 var_blocks: std::mem::take(&mut p.var_blocks),
+                var_access: Vec::new(),
                 methods: Vec::new(),
                 properties: Vec::new(),
                 body: body.clone(),
@@ -766,6 +767,16 @@ fn same_type(a: &Option<TypeSpec>, b: &Option<TypeSpec>) -> bool {
         (Some(TypeSpec::Named(x)), Some(TypeSpec::Named(y))) => x.sym == y.sym,
         (Some(_), Some(_)) => true,
         _ => false,
+    }
+}
+
+/// The word of an access specifier, for messages.
+fn access_word(v: Visibility) -> &'static str {
+    match v {
+        Visibility::Public => "PUBLIC",
+        Visibility::Private => "PRIVATE",
+        Visibility::Protected => "PROTECTED",
+        Visibility::Internal => "INTERNAL",
     }
 }
 
