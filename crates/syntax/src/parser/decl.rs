@@ -157,7 +157,7 @@ impl Parser<'_> {
             ));
         } else if !self.var_access_ok {
             self.error_here(format!(
-                "`{}` applies only to a `VAR` section of a CLASS or FUNCTION_BLOCK",
+                "`{}` applies only to a `VAR` section of a CLASS or FUNCTION_BLOCK (not of a PROGRAM, FUNCTION or METHOD)",
                 word.0
             ));
         }
