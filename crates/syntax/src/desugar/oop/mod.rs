@@ -38,6 +38,11 @@
 //!   `__BODY`, whose copy in each class runs that class's body).
 //!   `REF(d)` and a reference to a derived class convert (`__IC_`); a
 //!   reference to a base does not go into a reference to a derived class.
+//! - Variable access: a VAR is PROTECTED unless its section says `PUBLIC`,
+//!   `PRIVATE` or `INTERNAL` (`Class::var_access`). Code that may reach an
+//!   internal variable of another instance (`x.v`, `r^.v`) reads it as
+//!   `__PF_<C>__<v>(__THIS := x)^` (`private.rs`); a PRIVATE or INTERNAL one
+//!   out of reach is E207, any other out of reach is the checker's E024.
 //!
 //! Every misuse is reported here, at the source's names (E200–E213).
 

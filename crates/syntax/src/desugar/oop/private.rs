@@ -1,9 +1,12 @@
-//! A class's own code reaching the internal variables (VAR, VAR_TEMP…, not
+//! Code reaching the internal variables (VAR, VAR_TEMP…, not
 //! the inputs and outputs) of *another* instance of the class: `p^.val` in
 //! a method of `Node` for `p : REF_TO Node` (a linked list), `other.val`.
 //! Those variables are PROTECTED (the standard's default for a VAR
 //! section): the methods, accessors and body of the declaring class and of
-//! the classes derived from it reach them, through any instance.
+//! the classes derived from it reach them, through any instance. A
+//! `VAR PUBLIC` one is reached by any code (`h.shape := sq` in a PROGRAM),
+//! a `VAR INTERNAL` one by the code of the class's namespace, a
+//! `VAR PRIVATE` one by the declaring class's code only.
 //!
 //! The checker only lets `__THIS.v` reach such a variable, so the access
 //! becomes `__PF_<C>__<v>(__THIS := instance)^`, a function returning the
