@@ -576,7 +576,7 @@ impl<'a> Oop<'a> {
                         return;
                     }
                     let own = matches!(&base.kind, ExprKind::Name(b) if b.sym == self.this || b.sym == self.self_);
-                    if !own && self.internal_reachable(c, member.sym, cx) {
+                    if !own && self.field_fn_needed(c, member.sym, cx) {
                         let mut b = (**base).clone();
                         self.expr(&mut b, cx);
                         self.internal_member(e, c, b, member);

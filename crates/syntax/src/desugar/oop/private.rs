@@ -51,6 +51,16 @@ impl<'a> Oop<'a> {
             .is_some_and(|(owner, vis)| self.visible(owner, vis, cx))
     }
 
+    /// `x.v` must go through `__PF_` (`internal_member`): a reachable
+    /// PROTECTED or PRIVATE variable. A PUBLIC or INTERNAL one stays a
+    /// member, which the checker lets any code see (`Model::public_vars`).
+    pub(super) fn field_fn_needed(&self, c: Symbol, v: Symbol, cx: &Ctx) -> bool {
+        self.var_access(c, v).is_some_and(|(owner, vis)| {
+            matches!(vis, Visibility::Protected | Visibility::Private)
+                && self.visible(owner, vis, cx)
+        })
+    }
+
     /// A use of the internal variable `v` of class `c` declared PRIVATE or
     /// INTERNAL where its access does not reach: E207 (`true`). Other
     /// variables that are out of reach are the checker's E024.
