@@ -40,9 +40,11 @@
 //!   reference to a base does not go into a reference to a derived class.
 //! - Variable access: a VAR is PROTECTED unless its section says `PUBLIC`,
 //!   `PRIVATE` or `INTERNAL` (`Class::var_access`). Code that may reach an
-//!   internal variable of another instance (`x.v`, `r^.v`) reads it as
-//!   `__PF_<C>__<v>(__THIS := x)^` (`private.rs`); a PRIVATE or INTERNAL one
-//!   out of reach is E207, any other out of reach is the checker's E024.
+//!   PROTECTED or PRIVATE variable of another instance (`x.v`, `r^.v`)
+//!   reads it as `__PF_<C>__<v>(__THIS := x)^` (`private.rs`); a PUBLIC or
+//!   INTERNAL one stays `x.v`, which the checker lets any code see. A
+//!   PRIVATE or INTERNAL one out of reach is E207, any other the checker's
+//!   E024.
 //!
 //! Every misuse is reported here, at the source's names (E200–E213).
 

@@ -1,12 +1,13 @@
-//! Code reaching the internal variables (VAR, VAR_TEMP…, not
+//! A class's own code reaching the internal variables (VAR, VAR_TEMP…, not
 //! the inputs and outputs) of *another* instance of the class: `p^.val` in
 //! a method of `Node` for `p : REF_TO Node` (a linked list), `other.val`.
 //! Those variables are PROTECTED (the standard's default for a VAR
 //! section): the methods, accessors and body of the declaring class and of
-//! the classes derived from it reach them, through any instance. A
-//! `VAR PUBLIC` one is reached by any code (`h.shape := sq` in a PROGRAM),
-//! a `VAR INTERNAL` one by the code of the class's namespace, a
-//! `VAR PRIVATE` one by the declaring class's code only.
+//! the classes derived from it reach them, through any instance; a
+//! `VAR PRIVATE` one only the declaring class's code. A `VAR PUBLIC` one
+//! stays a plain member that the checker lets any code see
+//! (`Model::public_vars`), as a `VAR INTERNAL` one once this stage has
+//! refused its uses outside the class's namespace (E207).
 //!
 //! The checker only lets `__THIS.v` reach such a variable, so the access
 //! becomes `__PF_<C>__<v>(__THIS := instance)^`, a function returning the
