@@ -130,7 +130,7 @@ impl Parser<'_> {
     }
 
     /// `PUBLIC` / `PRIVATE` / `PROTECTED` / `INTERNAL` after `VAR` (eaten).
-    /// It is a specifier only when a name, `CONSTANT` or `RETAIN` follows:
+    /// It is a specifier only when a name, `CONSTANT`, `RETAIN` or `END_VAR` follows:
     /// `VAR public : INT; END_VAR` declares a variable named `public`.
     /// `Some(None)`: a specifier where none is allowed (reported).
     fn var_access_specifier(&mut self, opener: Token, kind: VarKind) -> Option<Option<Visibility>> {
@@ -144,7 +144,7 @@ impl Parser<'_> {
         .find(|(w, _)| self.is_word(w))?;
         let qualifier_follows = matches!(
             self.nth(1),
-            Tok::Kw(Kw::Constant | Kw::Retain | Kw::NonRetain)
+            Tok::Kw(Kw::Constant | Kw::Retain | Kw::NonRetain | Kw::EndVar)
         );
         if !(self.name_follows() || qualifier_follows) {
             return None;
