@@ -9,6 +9,7 @@ pub mod diag;
 pub mod intern;
 pub mod render;
 pub mod slc;
+pub mod slc_indirect;
 pub mod source;
 pub mod span;
 

@@ -330,6 +330,39 @@ impl Address {
     }
 }
 
+impl std::fmt::Display for Address {
+    /// As RSLogix writes it: `N7:15`, `T4:0.ACC`, `T4:0/DN`, `B3:1/2`,
+    /// `I:1/1`, `I:1.2/3`, `S:24`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let l = self.ty.letter();
+        match self.ty.fixed_number() {
+            Some(_) => write!(f, "{l}:{}", self.elem)?,
+            None => write!(f, "{l}{}:{}", self.file, self.elem)?,
+        }
+        let io = matches!(self.ty, FileType::I | FileType::O);
+        let named = |w: u32, bit: Option<u32>| {
+            SUBS.iter()
+                .find(|s| s.0 == self.ty && s.2 == w && s.3 == bit)
+                .map(|s| s.1)
+        };
+        match self.part {
+            Part::Element => Ok(()),
+            Part::Word(w) if io => write!(f, ".{w}"),
+            Part::Word(w) => match named(w, None) {
+                Some(n) => write!(f, ".{n}"),
+                None => write!(f, ".{w}"),
+            },
+            Part::Bit(w, b) if io && w > 0 => write!(f, ".{w}/{b}"),
+            Part::Bit(w, b) => match (self.ty.words(), named(w, Some(b)), named(w, None)) {
+                (1, ..) => write!(f, "/{b}"),
+                (_, Some(n), _) => write!(f, "/{n}"),
+                (_, None, Some(n)) => write!(f, ".{n}/{b}"),
+                _ => write!(f, ".{w}/{b}"),
+            },
+        }
+    }
+}
+
 /// The variable path an SLC address stands for (see [`Address::st_path`]).
 pub fn st_path(text: &str) -> Result<String, String> {
     let a = parse(text)?;
@@ -379,6 +412,29 @@ mod tests {
         assert!(p("T4:0/OV").contains("no bit"));
         assert!(p("F8:0/1").contains("no bits"));
         assert!(p("N7:256").contains("0 to 255"));
+    }
+
+    #[test]
+    fn addresses_print_as_rslogix_writes_them() {
+        for text in [
+            "N7:15",
+            "T4:7.ACC",
+            "T4:0/DN",
+            "C5:1/OV",
+            "R6:0.POS",
+            "B3:1/2",
+            "I:1/1",
+            "I:2.1/3",
+            "O:0.1",
+            "S:24",
+            "S:1/15",
+            "F8:3",
+            "N10:2/4",
+            "T4:0.PRE/3",
+        ] {
+            assert_eq!(parse(text).map(|a| a.to_string()), Ok(text.to_string()));
+        }
+        assert_eq!(parse("B3/18").map(|a| a.to_string()), Ok("B3:1/2".into()));
     }
 
     #[test]

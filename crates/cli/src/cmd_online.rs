@@ -568,12 +568,7 @@ pub fn run(args: &RunArgs) -> Result<Outcome, Outcome> {
             outcome = Outcome::BadInput;
         }
     }
-    for (name, place) in &prints {
-        println!(
-            "{name} = {}",
-            automat_runtime::value::format(&end.image, place)
-        );
-    }
+    crate::cmd_run::print_values(&end.image, &prints);
     if args.stats {
         eprintln!("{}", end.stats);
     }

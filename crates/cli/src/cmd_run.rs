@@ -11,7 +11,7 @@ use automat_ir::Program;
 use automat_lower::{lower, LowerOptions};
 use automat_runtime::trace::{Column, Trace};
 use automat_runtime::{
-    resolve, timearg, value, ClockMode, Limit, Place, SafeState, ScanObserver, SystemClock,
+    locate, timearg, value, ClockMode, Limit, Locator, SafeState, ScanObserver, SystemClock,
 };
 use automat_session::{Config, End, Final, Parts, Watching};
 use clap::Args;
@@ -247,15 +247,16 @@ pub(crate) fn compile(args: &RunArgs) -> Result<Program, Outcome> {
     })
 }
 
-/// Resolves every variable named on the command line.
+/// Resolves every variable named on the command line (an SLC indexed or
+/// indirect address is found in the image when it is printed).
 pub(crate) fn places(
     program: &Program,
     names: &[String],
     option: &str,
-) -> Result<Vec<(String, Place)>, Outcome> {
+) -> Result<Vec<(String, Locator)>, Outcome> {
     names
         .iter()
-        .map(|n| match resolve(program, n) {
+        .map(|n| match locate(program, n) {
             Ok(p) => Ok((n.clone(), p)),
             Err(e) => {
                 eprintln!("error: {option} {n}: {e}");
@@ -263,6 +264,20 @@ pub(crate) fn places(
             }
         })
         .collect()
+}
+
+/// The `--print` lines of the last image; an SLC indexed or indirect
+/// address outside its data file in that image prints `?` and says why.
+pub(crate) fn print_values(image: &[u8], prints: &[(String, Locator)]) {
+    for (name, loc) in prints {
+        match loc.place(image) {
+            Ok(p) => println!("{name} = {}", value::format(image, &p)),
+            Err(e) => {
+                println!("{name} = ?");
+                eprintln!("error: --print {name}: {e}");
+            }
+        }
+    }
 }
 
 /// The `--trace` columns: variables, and `steps(OWNER)` for the active
@@ -276,8 +291,9 @@ fn trace_columns(program: &Program, names: &[String]) -> Result<Vec<(String, Col
                 eprintln!("error: --trace {n}: {e}");
                 Err(Outcome::BadInput)
             }
-            None => match resolve(program, n) {
-                Ok(p) => Ok((n.clone(), Column::Value(p))),
+            None => match locate(program, n) {
+                Ok(Locator::Fixed(p)) => Ok((n.clone(), Column::Value(p))),
+                Ok(l) => Ok((n.clone(), Column::Located(l))),
                 Err(e) => {
                     eprintln!("error: --trace {n}: {e}");
                     Err(Outcome::BadInput)
@@ -437,7 +453,7 @@ fn finish(
     args: &RunArgs,
     mut end: Final,
     trace: Option<Trace<BufWriter<File>>>,
-    prints: &[(String, Place)],
+    prints: &[(String, Locator)],
     retain: Option<&RetainCfg>,
     safe: &SafeState,
 ) -> Result<Outcome, Outcome> {
@@ -460,9 +476,7 @@ fn finish(
             outcome = Outcome::BadInput;
         }
     }
-    for (name, place) in prints {
-        println!("{name} = {}", value::format(&end.image, place));
-    }
+    print_values(&end.image, prints);
     if args.stats {
         eprintln!("{}", end.stats);
     }

@@ -300,6 +300,8 @@ fn run_loaded(args: &RunArgs, loaded: Loaded, from_project: bool) -> Result<Outc
             actions: a,
             judge: j,
         } = automat_scenario::prepare(&scope, &scn).map_err(|d| fail(&map, &d))?;
+        let mut j = j;
+        j.set_cycle(project.cycle_time_ns);
         actions = a;
         judge = Some(j);
         // The scenario's seed, as `automat test` uses it.

@@ -149,3 +149,104 @@ fn scenarios_take_slc_addresses() {
         text(&out.stderr)
     );
 }
+
+/// Indexed and indirect addresses in `--print` and `--trace`: found in
+/// the image they are printed from; one outside its data file prints `?`
+/// and says why, the run goes on (exit 0).
+#[test]
+fn indexed_and_indirect_addresses_print_by_name() {
+    let src = tmp(
+        "indirect.slc",
+        "; S:24 = 2, N7:0 = 1, N7:1 = 18, N7:2 = 7, N7:3 = 10\n\
+         DATA N7 10 = 1 18 7 10 0 0 0 55 0 0\n\
+         DATA N10 3 = 0 44 0\n\
+         DATA B3 2 = 0 4\n\
+         MOV 2 S:24\n\
+         MOV 123 N7:5\n\
+         XIC B3/0 TON T4:1 0.01 500 0\n",
+    );
+    let csv = src.with_extension("csv");
+    let (src_s, csv_s) = (src.display().to_string(), csv.display().to_string());
+    let out = automat(&[
+        "run",
+        &src_s,
+        "--cycles",
+        "2",
+        "--print",
+        "#N7:5",
+        "--print",
+        "#N7:3",
+        "--print",
+        "N7:[N7:0]",
+        "--print",
+        "T4:[N7:0].PRE",
+        "--print",
+        "N[N7:3]:1",
+        "--print",
+        "B3/[N7:1]",
+        "--print",
+        "B3:[N7:0]/2",
+        "--print",
+        "B3:0/[N7:2]",
+        "--print",
+        "N7:[N7:1]",
+        "--trace",
+        "#N7:3,N7:[N7:0],B3/[N7:1]",
+        "--trace-file",
+        &csv_s,
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert_eq!(
+        text(&out.stdout),
+        "#N7:5 = 55\n#N7:3 = 123\nN7:[N7:0] = 18\nT4:[N7:0].PRE = 500\nN[N7:3]:1 = 44\n\
+         B3/[N7:1] = 1\nB3:[N7:0]/2 = 1\nB3:0/[N7:2] = 0\nN7:[N7:1] = ?\n"
+    );
+    assert_eq!(
+        text(&out.stderr),
+        "error: --print N7:[N7:1]: indirect address `N7:[N7:1]`: the element 18 is not one of data file N7 (0 to 9)\n"
+    );
+    assert_eq!(
+        std::fs::read_to_string(&csv).expect("trace"),
+        "time,#N7:3,N7:[N7:0],B3/[N7:1]\nT#0s,123,18,1\nT#10ms,123,18,1\n"
+    );
+    // Not a place a binding or a plain path can take.
+    let out = automat(&["run", &src_s, "--cycles", "1", "--print", "#N7:0/1"]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("an indexed address names a word"),
+        "{}",
+        text(&out.stderr)
+    );
+}
+
+/// Scenarios read, expect and set indexed and indirect addresses
+/// (crates/cli/tests/projects/slc_indirect); a set or read outside the
+/// data file fails that line.
+#[test]
+fn scenarios_set_and_expect_indexed_and_indirect_addresses() {
+    let from = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/projects/slc_indirect");
+    let dir = std::env::temp_dir().join(format!("automat-slc-ind-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("scenarios")).expect("dir");
+    for f in [
+        "automat.toml",
+        "indirect.slc",
+        "scenarios/indirect.scn",
+        "scenarios/outside.scn",
+    ] {
+        std::fs::copy(format!("{from}/{f}"), dir.join(f)).expect("copy");
+    }
+    let d = dir.display().to_string();
+    let out = automat(&["test", &format!("{d}/scenarios/indirect.scn")]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+    let out = automat(&["test", &format!("{d}/scenarios/outside.scn")]);
+    assert_eq!(out.status.code(), Some(1));
+    let shown = text(&out.stdout).replace(&d, "P");
+    let want = "FAILED P/scenarios/outside.scn (outside)\n    \
+        P/scenarios/outside.scn:4: set N7:[N7:4]\n      \
+        failed at T#50ms: indirect address `N7:[N7:4]`: the element 12 is not one of data file N7 (0 to 9)\n    \
+        P/scenarios/outside.scn:5: expect at 60ms N7:[N7:4] = 0\n      \
+        failed at T#60ms: it is FALSE\n      \
+        values: N7:[N7:4] = ? (indirect address `N7:[N7:4]`: the element 12 is not one of data file N7 (0 to 9))\n";
+    assert!(shown.starts_with(want), "{shown}");
+    assert!(shown.ends_with("0 passed, 1 failed\n"), "{shown}");
+}

@@ -112,6 +112,9 @@ pub fn call(ctx: &mut Ctx, op: Builtin, dst: Option<Reg>, args: &[Reg]) -> R {
             set(ctx, from_value(&r));
         }
         Builtin::ToString(from, wide) => {
+            if !wide && crate::strplace::int_text(ctx, from, args).is_some() {
+                return Ok(());
+            }
             let (d, cap) = (ctx.get(a(0)?) as u32, ctx.get(a(1)?) as u32);
             let v = to_value(ctx.get(a(2)?), from);
             let target = if wide { E::Wstring } else { E::String };
@@ -129,6 +132,9 @@ pub fn call(ctx: &mut Ctx, op: Builtin, dst: Option<Reg>, args: &[Reg]) -> R {
             set(ctx, from_value(&r));
         }
         Builtin::Str(s, wide) => {
+            if !wide && crate::strplace::narrow(ctx, s, dst, args).is_some() {
+                return Ok(());
+            }
             if wide {
                 strings::<u16>(ctx, s, dst, args, true)?
             } else {

@@ -25,6 +25,7 @@ mod fast;
 mod fuse;
 mod interp;
 pub mod mem;
+mod strplace;
 
 /// What another backend (the Cranelift JIT, `automat-jit`) shares with the
 /// interpreter so that semantics and fault messages exist once: the

@@ -94,6 +94,10 @@ pub(crate) struct Tx<'a, 'b> {
     pub promoted: HashMap<u32, (MemTy, Variable)>,
     /// What is known about registers in the current block (`promote.rs`).
     pub facts: HashMap<Reg, Fact>,
+    /// Ranges `Check` proved of Cranelift values in the current block:
+    /// two loads of one promoted slot give the same value, so a second
+    /// check of it (another register) is seen to be proved too.
+    pub ranges: HashMap<Value, (i64, i64)>,
     /// `this .. this + extent` is proved inside the image (0: nothing is).
     pub extent: u64,
 }
@@ -315,6 +319,7 @@ pub fn function(
         pools,
         promoted: HashMap::new(),
         facts: HashMap::new(),
+        ranges: HashMap::new(),
         extent: 0,
     };
     if tx.this_safe {
@@ -357,6 +362,11 @@ impl Tx<'_, '_> {
         let cont = self.b.create_block();
         self.b.set_cold_block(cold);
         self.b.ins().brif(cond, cold, &[], cont, &[]);
+        // Both have their only predecessor: sealed now, a variable read in
+        // `cont` is the value it had before the check (not a fresh block
+        // parameter), so `ranges` recognises it.
+        self.b.seal_block(cold);
+        self.b.seal_block(cont);
         self.b.switch_to_block(cold);
         let k = self.iconst(kind);
         let func = self.iconst(self.index as i64);
@@ -416,7 +426,7 @@ impl Tx<'_, '_> {
                 return Err(JitError::Backend("block map".into()));
             };
             self.b.switch_to_block(block);
-            self.facts.clear();
+            self.forget();
             if headers.get(start).copied().unwrap_or(false) {
                 self.poll(start)?;
             }
@@ -517,7 +527,7 @@ impl Tx<'_, '_> {
         }
         // The budget ran out at or before the block's last instruction, so
         // a fault returned above; this point is never reached.
-        self.facts.clear();
+        self.forget();
         let wd = self.iconst(0);
         self.b.def_var(self.left, wd);
         let last = self.iconst(1);
@@ -566,13 +576,26 @@ impl Tx<'_, '_> {
                     .find(|(i, _)| *i == func)
                     .map(|(_, r)| *r)
                     .ok_or_else(|| JitError::Backend(format!("callee {func} at {pc}")))?;
-                let t = self.offset(this);
                 let cont = self.b.create_block();
-                if let Some(g) = self
+                let small = self
                     .funcs
                     .get(func as usize)
-                    .filter(|g| inlinable(g) && self.inlined + g.code.len() <= INLINE_BUDGET)
-                {
+                    .filter(|g| inlinable(g) && self.inlined + g.code.len() <= INLINE_BUDGET);
+                if let Some(g) = small {
+                    if let Some(range) = self.proved_instance(this, g) {
+                        // No entry check and no call to fall back on: the
+                        // instance is proved inside this one, so inside
+                        // the image.
+                        let t = self.proved_offset(this)?;
+                        self.inline_body(g, func, t, cont, this_extent(g))?;
+                        self.b.switch_to_block(cont);
+                        self.reload_after(g, Some(range));
+                        self.forget();
+                        return Ok(());
+                    }
+                }
+                let t = self.offset(this);
+                if let Some(g) = small {
                     self.inline(g, func, t, cont)?;
                 }
                 self.store_left();
@@ -592,7 +615,7 @@ impl Tx<'_, '_> {
                 self.b.switch_to_block(cont);
                 // The callee may have written this instance.
                 self.reload_slots(|_, _| true);
-                self.facts.clear();
+                self.forget();
             }
             _ => self.emit(inst)?,
         }
@@ -614,7 +637,7 @@ impl Tx<'_, '_> {
         let c = self.get(cond)?;
         let mut chosen = Vec::with_capacity(2);
         for arm in [&d.then, &d.els] {
-            self.facts.clear();
+            self.forget();
             for pc in arm.pure.clone() {
                 let inst = code
                     .get(pc)
@@ -628,7 +651,7 @@ impl Tx<'_, '_> {
             };
             chosen.push((src, self.get(src)?));
         }
-        self.facts.clear();
+        self.forget();
         let (Some(&(src, t)), Some(&(_, e))) = (chosen.first(), chosen.get(1)) else {
             return Err(JitError::Backend("select arms".into()));
         };
@@ -642,7 +665,7 @@ impl Tx<'_, '_> {
             .ok_or_else(|| JitError::Backend("select store".into()))?;
         self.pc = d.then.store as u32;
         self.emit(&store)?;
-        self.facts.clear();
+        self.forget();
         self.b.ins().jump(join, &[]);
         Ok(())
     }
@@ -671,6 +694,21 @@ impl<'a> Tx<'a, '_> {
         let call = self.b.create_block();
         self.b.ins().brif(ok, inline, &[], call, &[]);
         self.b.switch_to_block(inline);
+        self.inline_body(g, index, t, cont, extent)?;
+        self.b.switch_to_block(call);
+        Ok(())
+    }
+
+    /// The body of `g` in place, `this` = `t` proved to have `extent`
+    /// bytes inside the image; its `Ret` continues at `cont`.
+    fn inline_body(
+        &mut self,
+        g: &'a Func,
+        index: u32,
+        t: Value,
+        cont: cranelift_codegen::ir::Block,
+        extent: u64,
+    ) -> Result<(), JitError> {
         let vars = self.pools.vars(&mut self.b, g);
         let saved = (
             std::mem::replace(&mut self.f, g),
@@ -681,6 +719,7 @@ impl<'a> Tx<'a, '_> {
             self.ret_to.replace(cont),
             std::mem::take(&mut self.promoted),
             std::mem::take(&mut self.facts),
+            std::mem::take(&mut self.ranges),
             std::mem::replace(&mut self.extent, extent),
         );
         self.inlined += g.code.len();
@@ -696,11 +735,52 @@ impl<'a> Tx<'a, '_> {
             self.ret_to,
             self.promoted,
             self.facts,
+            self.ranges,
             self.extent,
         ) = saved;
-        r?;
-        self.b.switch_to_block(call);
-        Ok(())
+        r
+    }
+
+    /// The bytes `this + [lo, end)` of this instance that the instance
+    /// `a` of callee `g` occupies, when the block's facts prove them
+    /// inside the proved extent.
+    fn proved_instance(&self, a: Addr, g: &Func) -> Option<(u64, u64)> {
+        let size = this_extent(g);
+        if a.base == Base::This {
+            // A scalar instance (`tmr(IN := x)`) at a constant offset.
+            let end = (a.offset as u64).checked_add(size)?;
+            return (self.this_safe && end <= self.extent).then_some((a.offset as u64, end));
+        }
+        self.proved_range(a, u32::try_from(size).ok()?)
+    }
+
+    /// The offset of a register address `proved_range` proved: the plain
+    /// sum (it does not wrap, see `signed_offset`).
+    fn proved_offset(&mut self, a: Addr) -> Result<Value, JitError> {
+        let Base::Reg(r) = a.base else {
+            // `This` inside the proved extent: the plain sum too.
+            return Ok(self.offset(a));
+        };
+        let v = self.get(r)?;
+        Ok(self.b.ins().iadd_imm_s(v, signed_offset(a)))
+    }
+
+    /// After an inlined call of `g` on the bytes `range` of this
+    /// instance: reloads the promoted slots it may have written. A callee
+    /// that writes memory only through its own `This` (no register or
+    /// absolute stores, copies or builtins) writes only inside `range`.
+    fn reload_after(&mut self, g: &Func, range: Option<(u64, u64)>) {
+        let own_only = g.code.iter().all(|i| match *i {
+            Inst::Store { addr, .. } | Inst::StoreBit { addr, .. } => addr.base == Base::This,
+            Inst::Copy { .. } | Inst::Builtin { .. } | Inst::Call { .. } => false,
+            _ => true,
+        });
+        match range {
+            Some((lo, end)) if own_only => {
+                self.reload_slots(|off, n| (off as u64) < end && lo < off as u64 + n as u64)
+            }
+            _ => self.reload_slots(|_, _| true),
+        }
     }
 }
 
@@ -754,6 +834,13 @@ impl Tx<'_, '_> {
         (self.this_safe && lo >= 0 && end as u64 <= self.extent).then_some((lo as u64, end as u64))
     }
 
+    /// Ends what is known about registers and values (a new block, or
+    /// after code that does not dominate what follows).
+    pub fn forget(&mut self) {
+        self.facts.clear();
+        self.ranges.clear();
+    }
+
     /// Every instruction but control: the slots and facts of `promote.rs`
     /// around `emit_plain`.
     pub fn emit(&mut self, inst: &Inst) -> Result<(), JitError> {
@@ -762,6 +849,10 @@ impl Tx<'_, '_> {
                 if let Some(&(t, var)) = self.promoted.get(&addr.offset) {
                     if t == ty {
                         let v = self.b.use_var(var);
+                        self.facts.remove(&dst);
+                        if let Some(&(lo, hi)) = self.ranges.get(&v) {
+                            self.facts.insert(dst, Fact::Range(lo, hi));
+                        }
                         return self.set(dst, v);
                     }
                 }
@@ -801,10 +892,21 @@ impl Tx<'_, '_> {
                 self.emit_plain(inst)?;
                 self.reload_slots(|_, _| true);
             }
+            // A check the block's facts already prove (the same index
+            // checked again, as `a[i].x := a[i].y` does): nothing can fail.
+            Inst::Check { val, lo, hi, .. } if matches!(self.facts.get(&val), Some(&Fact::Range(a, b)) if lo <= a && b <= hi) =>
+                {}
             _ => self.emit_plain(inst)?,
         }
         if let Inst::Check { val, lo, hi, .. } = *inst {
+            // Past the check the value is in both ranges.
+            let (lo, hi) = match self.facts.get(&val) {
+                Some(&Fact::Range(a, b)) => (lo.max(a), hi.min(b)),
+                _ => (lo, hi),
+            };
             self.facts.insert(val, Fact::Range(lo, hi));
+            let v = self.get(val)?;
+            self.ranges.insert(v, (lo, hi));
         } else if let Some(d) = promote::writes(inst) {
             let new = promote::derive(inst, &self.facts, self.extent);
             self.facts.remove(&d);

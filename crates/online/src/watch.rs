@@ -12,7 +12,7 @@
 use crate::api::{authorize, error};
 use crate::auth::Role;
 use crate::App;
-use automat_runtime::{value as show, Place};
+use automat_runtime::Locator;
 use automat_session::Snapshot;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::extract::{RawQuery, State as Ax};
@@ -62,16 +62,19 @@ pub async fn watch(
 
 /// One update; `forced` lists the watched paths that are forced (only
 /// when some are).
-fn values(app: &App, places: &[(String, Place)], snap: &Snapshot) -> String {
+fn values(app: &App, places: &[(String, Locator)], snap: &Snapshot) -> String {
     let map: Map<String, Value> = places
         .iter()
-        .map(|(n, p)| (n.clone(), json!(show::format(&snap.image, p))))
+        .map(|(n, l)| (n.clone(), json!(l.format(&snap.image))))
         .collect();
     let mut msg = json!({ "plc_time_ns": snap.plc_time_ns, "scans": snap.scans, "values": map });
     if !snap.forces.is_empty() {
         let forced: Vec<&str> = places
             .iter()
-            .filter(|(_, p)| app.session.is_forced(p))
+            .filter(|(_, l)| {
+                l.place(&snap.image)
+                    .is_ok_and(|p| app.session.is_forced(&p))
+            })
             .map(|(n, _)| n.as_str())
             .collect();
         if !forced.is_empty() {
@@ -90,7 +93,7 @@ async fn next(rx: &mut Option<mpsc::Receiver<Arc<Snapshot>>>) -> Option<Arc<Snap
 
 async fn serve(mut socket: WebSocket, app: App) {
     let mut rx: Option<mpsc::Receiver<Arc<Snapshot>>> = None;
-    let mut places: Vec<(String, Place)> = Vec::new();
+    let mut places: Vec<(String, Locator)> = Vec::new();
     loop {
         tokio::select! {
             msg = socket.recv() => {
@@ -137,7 +140,7 @@ async fn serve(mut socket: WebSocket, app: App) {
     }
 }
 
-type Subscribed = (Vec<(String, Place)>, mpsc::Receiver<Arc<Snapshot>>);
+type Subscribed = (Vec<(String, Locator)>, mpsc::Receiver<Arc<Snapshot>>);
 
 async fn subscribe(app: &App, text: &str) -> Result<Subscribed, String> {
     let req: Subscribe =
@@ -148,7 +151,7 @@ async fn subscribe(app: &App, text: &str) -> Result<Subscribed, String> {
     let places = req
         .subscribe
         .iter()
-        .map(|p| app.session.place(p).map(|pl| (p.clone(), pl)))
+        .map(|p| app.session.locate(p).map(|l| (p.clone(), l)))
         .collect::<Result<Vec<_>, _>>()
         .map_err(|e| e.message().to_string())?;
     let (tx, rx) = mpsc::channel::<Arc<Snapshot>>(4);

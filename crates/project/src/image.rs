@@ -23,6 +23,14 @@ fn elementary(place: &Place) -> Option<E> {
 /// The value at `place` as the plant sees it; `None` for strings and
 /// places outside the image.
 pub fn read(image: &[u8], place: &Place) -> Option<Value> {
+    // Every actuator is read every scan: BOOL, integers and reals straight
+    // from the bytes, without building an `automat_iec::Value` (the same
+    // values as the general path below).
+    read_direct(image, place).unwrap_or_else(|| read_general(image, place))
+}
+
+/// [`read`] through `automat_iec::Value`, for every type.
+fn read_general(image: &[u8], place: &Place) -> Option<Value> {
     Some(match value::read(image, place)? {
         IecValue::Bool(b) => Value::Bool(b),
         IecValue::Int(i, _) => {
@@ -30,6 +38,44 @@ pub fn read(image: &[u8], place: &Place) -> Option<Value> {
         }
         IecValue::Real(r, _) => Value::Real(r),
         IecValue::Duration(ns, _) => Value::Int(ns),
+        _ => return None,
+    })
+}
+
+/// [`read`] for the elementary types actuators have (`None`: take the
+/// general path; `Some(None)`: the place is outside the image).
+fn read_direct(image: &[u8], place: &Place) -> Option<Option<Value>> {
+    fn at<const N: usize>(image: &[u8], offset: u32) -> Option<[u8; N]> {
+        let start = usize::try_from(offset).ok()?;
+        image.get(start..start.checked_add(N)?)?.try_into().ok()
+    }
+    let (ty, bit) = match &place.ty {
+        PlaceType::Elementary(e) => (*e, place.bit),
+        PlaceType::Enum { base, .. } => (*base, None),
+        _ => return None,
+    };
+    let o = place.offset;
+    let int = |i: Option<i64>| i.map(Value::Int);
+    Some(match ty {
+        E::Bool => at::<1>(image, o).map(|[b]| {
+            Value::Bool(match bit {
+                Some(k) => k < 8 && b >> k & 1 != 0,
+                None => b != 0,
+            })
+        }),
+        E::Real => at(image, o).map(|b| Value::Real(f32::from_le_bytes(b).into())),
+        E::Lreal => at(image, o).map(|b| Value::Real(f64::from_le_bytes(b))),
+        E::Sint => int(at(image, o).map(|b| i8::from_le_bytes(b).into())),
+        E::Int => int(at(image, o).map(|b| i16::from_le_bytes(b).into())),
+        E::Dint => int(at(image, o).map(|b| i32::from_le_bytes(b).into())),
+        E::Lint | E::Time | E::Ltime => int(at(image, o).map(i64::from_le_bytes)),
+        E::Usint | E::Byte => int(at(image, o).map(|b| u8::from_le_bytes(b).into())),
+        E::Uint | E::Word => int(at(image, o).map(|b| u16::from_le_bytes(b).into())),
+        E::Udint | E::Dword => int(at(image, o).map(|b| u32::from_le_bytes(b).into())),
+        // Beyond i64 the general path saturates.
+        E::Ulint | E::Lword => {
+            int(at(image, o).map(|b| i64::try_from(u64::from_le_bytes(b)).unwrap_or(i64::MAX)))
+        }
         _ => return None,
     })
 }
@@ -161,6 +207,75 @@ mod tests {
         assert_eq!(
             read(&img, &place(12, None, E::Sint)),
             Some(Value::Int(-128))
+        );
+    }
+
+    #[test]
+    fn the_direct_read_is_the_general_read() {
+        // Bytes with the sign bits set and the high bit of a u64; some reals
+        // are NaN (compared by their printed form).
+        let img = [
+            0x81, 0xff, 0x80, 0x7f, 0x00, 0x00, 0x20, 0xc1, 0xfe, 0xff, 0xff, 0xff, 0xff, 0xff,
+            0xff, 0xff,
+        ];
+        let types = [
+            E::Bool,
+            E::Sint,
+            E::Int,
+            E::Dint,
+            E::Lint,
+            E::Usint,
+            E::Uint,
+            E::Udint,
+            E::Ulint,
+            E::Byte,
+            E::Word,
+            E::Dword,
+            E::Lword,
+            E::Real,
+            E::Lreal,
+            E::Time,
+            E::Ltime,
+        ];
+        let mut compared = 0;
+        for ty in types {
+            for offset in [0, 3, 4, 8, 15, 16] {
+                for bit in [None, Some(0), Some(7), Some(8)] {
+                    let p = place(offset, bit, ty);
+                    let direct = read_direct(&img, &p);
+                    assert!(direct.is_some(), "{ty:?} takes the direct path");
+                    assert_eq!(
+                        format!("{:?}", direct.flatten()),
+                        format!("{:?}", read_general(&img, &p)),
+                        "{ty:?} at {offset} {bit:?}"
+                    );
+                    let e = Place {
+                        ty: PlaceType::Enum {
+                            name: "E".into(),
+                            base: ty,
+                            values: Vec::new(),
+                        },
+                        ..p
+                    };
+                    if ty != E::Bool {
+                        assert_eq!(
+                            format!("{:?}", read_direct(&img, &e).flatten()),
+                            format!("{:?}", read_general(&img, &e))
+                        );
+                    }
+                    compared += 1;
+                }
+            }
+        }
+        assert_eq!(compared, 17 * 6 * 4);
+        // Ulint beyond i64 saturates on both paths.
+        assert_eq!(
+            read(&img, &place(8, None, E::Ulint)),
+            Some(Value::Int(i64::MAX))
+        );
+        assert_eq!(
+            read(&img, &place(4, None, E::Real)),
+            Some(Value::Real(-10.0))
         );
     }
 }

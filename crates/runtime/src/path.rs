@@ -105,6 +105,10 @@ pub fn resolve_access(program: &Program, text: &str) -> Result<Access, String> {
             generated: None,
             bounds: None,
         }
+    } else if crate::slc_place::looks_dynamic(t) {
+        return Err(format!(
+            "`{t}` is an indexed or indirect SLC-500 address: its place depends on the data (S:24, the words in `[ ]`), so it names no fixed place here (it is read and written by name where the value is taken at run time: --print, --trace, scenarios, the online API)"
+        ));
     } else if automat_base::slc::looks_like(t) {
         // An SLC-500 address (`N7:15`, `T4:0/DN`, `I:1/1`) names a word or
         // bit of the data-file arrays the SLC front end generates.
@@ -128,6 +132,20 @@ pub fn resolve_access(program: &Program, text: &str) -> Result<Access, String> {
         ));
     }
     Ok(access)
+}
+
+/// The place of a direct SLC address (a pointer word of an indirect one).
+pub(crate) fn resolve_slc_address(
+    program: &Program,
+    a: automat_base::slc::Address,
+) -> Result<Place, String> {
+    let path = a
+        .st_path()
+        .ok_or_else(|| format!("`{}` is a whole element", a.array()))?;
+    let sels = parse(&path)?;
+    let mut access = walk_path(program, &path, &sels)?;
+    access.place.slc_bit = a.is_bit();
+    Ok(access.place)
 }
 
 /// Is `place` a bit of an SLC-500 data file: named by its SLC address

@@ -19,6 +19,9 @@ pub enum Column {
     /// The names of the BOOL places that are TRUE, separated by spaces, `-`
     /// when none is (the active steps of a chart: `steps(Main)`).
     Flags(Vec<(String, Place)>),
+    /// An SLC indexed or indirect address, found in each scan's image (`?`
+    /// in a scan where it lies outside its data file).
+    Located(crate::slc_place::Locator),
 }
 
 impl From<Place> for Column {
@@ -32,6 +35,7 @@ impl Column {
     pub fn cell(&self, image: &[u8]) -> String {
         match self {
             Column::Value(p) => value::format(image, p),
+            Column::Located(l) => l.format(image),
             Column::Flags(flags) => {
                 let on: Vec<&str> = flags
                     .iter()

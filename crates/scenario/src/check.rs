@@ -19,12 +19,15 @@ use automat_iec::Elementary as E;
 use automat_ir::Program;
 use automat_plant::{Dir, Kind, Plant, Value};
 use automat_project::{Action, Binding};
-use automat_runtime::{resolve, Place, PlaceType};
+use automat_runtime::slc_place::looks_dynamic;
+use automat_runtime::{locate, resolve, Locator, Place, PlaceType};
 
 /// Where a referenced value comes from.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Src {
     Place(Place),
+    /// An SLC-500 indexed or indirect address, found in each scan's image.
+    Located(Locator),
     Signal(usize),
     Quantity(usize),
 }
@@ -140,7 +143,11 @@ fn mismatch(span: Span, msg: String) -> Diagnostic {
 }
 
 fn place_ty(p: &Place) -> Option<Ty> {
-    Some(match &p.ty {
+    type_ty(&p.ty)
+}
+
+fn type_ty(ty: &PlaceType) -> Option<Ty> {
+    Some(match ty {
         PlaceType::Elementary(E::Bool) => Ty::Bool,
         PlaceType::Elementary(e) if e.is_num() || e.is_bit_string() => Ty::Num,
         PlaceType::Elementary(e) if e.is_duration() => Ty::Time,
@@ -220,6 +227,15 @@ impl Scope<'_> {
                     src: Src::Signal(i),
                     ty: kind_ty(kind),
                 },
+            });
+        }
+        if looks_dynamic(&n.text) {
+            let l = locate(self.program, &n.text).map_err(|e| unknown(e.to_string()))?;
+            let ty = type_ty(&l.ty()).ok_or_else(|| mismatch(n.span, "no value".into()))?;
+            return Ok(Ref {
+                name: n.text.clone(),
+                src: Src::Located(l),
+                ty,
             });
         }
         let place = resolve(self.program, &n.text)
@@ -592,6 +608,22 @@ impl Scope<'_> {
 
     /// Resolves one `at` action into coupling actions at their times.
     pub fn action(&self, a: &ast::Action) -> Result<Vec<(i64, Action)>, Diagnostic> {
+        let (list, located) = self.actions(a)?;
+        match (located.first(), &a.kind) {
+            (Some(_), ActionKind::Set(n, ..)) => Err(mismatch(
+                n.span,
+                format!(
+                    "`{}` is an indexed or indirect address: it is set by an `at` or `when` line of a scenario file",
+                    n.text
+                ),
+            )),
+            _ => Ok(list),
+        }
+    }
+
+    /// [`Scope::action`], with the sets of SLC indexed or indirect
+    /// addresses apart: their place is found when they are due.
+    pub fn actions(&self, a: &ast::Action) -> Result<ActionList, Diagnostic> {
         let t = a.at_ns;
         let signal_of = |n: &Name| {
             self.signal(&n.text).ok_or_else(|| {
@@ -625,7 +657,30 @@ impl Scope<'_> {
                 return Err(self.needs_plant(span, what));
             }
         }
-        Ok(match &a.kind {
+        if let ActionKind::Set(n, lit, span) = &a.kind {
+            if self.signal(&n.text).is_none() && looks_dynamic(&n.text) {
+                let r = self.reference(n)?;
+                let Src::Located(loc) = r.src else {
+                    return Err(mismatch(n.span, format!("`{}` cannot be set", n.text)));
+                };
+                let lit = match lit {
+                    Lit::Int(v @ (0 | 1)) if loc.slc_bit() => &Lit::Bool(*v == 1),
+                    _ => lit,
+                };
+                let value = self.lit_value(lit, &r.ty, *span, &format!("`{}`", n.text))?;
+                return Ok((
+                    Vec::new(),
+                    vec![LocatedWrite {
+                        at_ns: t,
+                        name: n.text.clone(),
+                        line: a.line,
+                        loc,
+                        value,
+                    }],
+                ));
+            }
+        }
+        let list = match &a.kind {
             ActionKind::Press(n, dur) => self.press(n, t, true, *dur)?,
             ActionKind::Release(n) => self.press(n, t, false, None)?,
             ActionKind::Set(n, lit, span) => match self.signal(&n.text) {
@@ -690,9 +745,26 @@ impl Scope<'_> {
                     args: args.clone(),
                 },
             )],
-        })
+        };
+        Ok((list, Vec::new()))
     }
 }
+
+/// A `set` of an SLC-500 indexed or indirect address: written at its
+/// time to the place it names in the image of the scan before.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LocatedWrite {
+    pub at_ns: i64,
+    /// As written, for a failure.
+    pub name: String,
+    pub line: u32,
+    pub loc: Locator,
+    pub value: Value,
+}
+
+/// The coupling actions of a line, and its sets of indexed or indirect
+/// addresses.
+pub type ActionList = (Vec<(i64, Action)>, Vec<LocatedWrite>);
 
 /// `e` (typed `c`, `t`) as a BOOL when it is the literal 1 or 0 compared
 /// with a bit of an SLC-500 data file (`other`, typed `other_ty`), which
@@ -706,7 +778,11 @@ fn slc_bit_number(
     refs: &[Ref],
 ) -> (Cond, Option<Ty>) {
     let slc = matches!(other, Cond::Ref(i)
-        if matches!(refs.get(*i).map(|r| &r.src), Some(Src::Place(p)) if p.slc_bit));
+    if match refs.get(*i).map(|r| &r.src) {
+        Some(Src::Place(p)) => p.slc_bit,
+        Some(Src::Located(l)) => l.slc_bit(),
+        _ => false,
+    });
     match e {
         Expr::Lit(Lit::Int(v @ (0 | 1)), _) if slc && *other_ty == Some(Ty::Bool) => {
             (Cond::Bool(*v == 1), Some(Ty::Bool))

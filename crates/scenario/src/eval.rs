@@ -69,6 +69,9 @@ impl Ref {
     pub fn read(&self, image: &[u8], sim: &Sim) -> Val {
         match &self.src {
             Src::Place(p) => read_place(image, p),
+            Src::Located(l) => l
+                .place(image)
+                .map_or(Val::N(f64::NAN), |p| read_place(image, &p)),
             Src::Signal(i) => to_val(sim.plant().get(*i)),
             Src::Quantity(i) => Val::N(sim.plant().quantity(*i)),
         }
@@ -78,6 +81,10 @@ impl Ref {
     pub fn show(&self, image: &[u8], sim: &Sim) -> String {
         match &self.src {
             Src::Place(p) => value::format(image, p),
+            Src::Located(l) => match l.place(image) {
+                Ok(p) => value::format(image, &p),
+                Err(e) => format!("? ({e})"),
+            },
             Src::Signal(i) => show_value(sim.plant().get(*i)),
             Src::Quantity(i) => show_f64(sim.plant().quantity(*i)),
         }
@@ -252,6 +259,21 @@ impl Cond {
                 b.refs(out);
             }
             Cond::Bool(_) | Cond::Num(_) | Cond::Count(_) => {}
+        }
+    }
+
+    /// Whether it looks at the values after the previous scan (`prev`,
+    /// `rise`, `fall`, `change`).
+    pub fn uses_prev(&self) -> bool {
+        match self {
+            Cond::Prev(_) | Cond::Rise(_) | Cond::Fall(_) | Cond::Change(_) => true,
+            Cond::Not(x) | Cond::Neg(x) | Cond::Abs(x) => x.uses_prev(),
+            Cond::Logic(_, a, b)
+            | Cond::Cmp(_, a, b)
+            | Cond::Arith(_, a, b)
+            | Cond::Min(a, b)
+            | Cond::Max(a, b) => a.uses_prev() || b.uses_prev(),
+            Cond::Ref(_) | Cond::Bool(_) | Cond::Num(_) | Cond::Count(_) => false,
         }
     }
 }

@@ -40,7 +40,9 @@ pub fn tokens(line: &str) -> Result<Vec<Token>, (usize, String)> {
                 i += 1;
                 continue;
             }
-            b'#' => break,
+            // `#N7:5`, an indexed SLC-500 address, is a word; any other
+            // `#` starts a comment.
+            b'#' if !indexed_slc(b, i) => break,
             b'(' | b')' => {
                 i += 1;
                 out.push(Token {
@@ -109,10 +111,12 @@ pub fn tokens(line: &str) -> Result<Vec<Token>, (usize, String)> {
                 // `B3:0/1`, `T4:0/DN`, `I:1/1`: the bit of an SLC-500
                 // address (a word with `:` after a file letter) is part of it.
                 b'/' if slc_bit(b, start, i) => {}
+                // `B3/[N7:1]`: the indirect flat bit is part of the word.
+                b'/' if b.get(i + 1) == Some(&b'[') && slc_file(b.get(start..i)) => {}
                 b' ' | b'\t' | b'\r' | b'(' | b')' | b'=' | b'<' | b'>' | b'"' | b'*' | b'/'
                 | b',' => break,
                 b'+' | b'-' if !sign_in_word(b, start, i) => break,
-                b'#' if i == start => break,
+                b'#' if i == start && !indexed_slc(b, i) => break,
                 _ => {}
             }
             i += 1;
@@ -139,8 +143,30 @@ fn slc_bit(b: &[u8], start: usize, i: usize) -> bool {
         && word.contains(&b':')
         && word[1..]
             .iter()
-            .all(|c| c.is_ascii_alphanumeric() || *c == b':' || *c == b'.')
-        && b.get(i + 1).is_some_and(u8::is_ascii_alphanumeric)
+            .all(|c| c.is_ascii_alphanumeric() || b":.[]".contains(c))
+        && b.get(i + 1)
+            .is_some_and(|c| c.is_ascii_alphanumeric() || *c == b'[')
+}
+
+/// A data file's name: a file letter and digits (`B3`, `N10`).
+fn slc_file(word: Option<&[u8]>) -> bool {
+    word.is_some_and(|w| {
+        w.first().is_some_and(|c| b"BNSbns".contains(c))
+            && w.len() > 1
+            && w[1..].iter().all(u8::is_ascii_digit)
+    })
+}
+
+/// Whether the `#` at `i` starts an indexed SLC-500 address (`#N7:5`,
+/// `#F8:0`, `#B3:2`): a B, N or F file, its number and `:`.
+fn indexed_slc(b: &[u8], i: usize) -> bool {
+    let rest = b.get(i + 1..).unwrap_or(&[]);
+    let digits = rest
+        .get(1..)
+        .map_or(0, |r| r.iter().take_while(|c| c.is_ascii_digit()).count());
+    rest.first().is_some_and(|c| b"BNFbnf".contains(c))
+        && digits > 0
+        && rest.get(1 + digits) == Some(&b':')
 }
 
 /// Whether the `+`/`-` at `i` belongs to the word that started at `start`:
@@ -160,6 +186,33 @@ mod tests {
 
     fn words(line: &str) -> Vec<Tok> {
         tokens(line).unwrap().into_iter().map(|t| t.tok).collect()
+    }
+
+    #[test]
+    fn slc_indexed_and_indirect_addresses_are_one_word() {
+        let w = |s: &str| Tok::Word(s.to_string());
+        assert_eq!(
+            words("expect at 1s #N7:5 = N7:[N7:0] # a comment"),
+            [
+                w("expect"),
+                w("at"),
+                w("1s"),
+                w("#N7:5"),
+                Tok::Op("="),
+                w("N7:[N7:0]")
+            ]
+        );
+        assert_eq!(
+            words("B3/[N7:1] B3:[N7:0]/5 B3:0/[N7:2] T4:[N7:0]/DN N[N7:3]:1"),
+            [
+                w("B3/[N7:1]"),
+                w("B3:[N7:0]/5"),
+                w("B3:0/[N7:2]"),
+                w("T4:[N7:0]/DN"),
+                w("N[N7:3]:1")
+            ]
+        );
+        assert_eq!(words("#N7 x"), Vec::<Tok>::new());
     }
 
     #[test]

@@ -30,7 +30,7 @@
 //! fault of the program fails the scenario.
 
 use crate::ast::{self, Anchor, Scenario, When};
-use crate::check::{Cond, Ctx, NoPlant, Ref, Scope, Src};
+use crate::check::{Cond, Ctx, LocatedWrite, NoPlant, Ref, Scope, Src};
 use crate::eval::{same, show_f64, show_value, Frame, Val};
 use automat_base::Diagnostic;
 use automat_engine::Engine;
@@ -113,6 +113,12 @@ struct Check {
     line: u32,
     /// Indexes into the refs this condition names, for the failure values.
     names: Vec<usize>,
+    /// Every ref it evaluates (its condition, counts and event), and
+    /// whether it needs them after the previous scan too (`prev`, `rise`,
+    /// ...): then they are read at every scan until it is done, else only
+    /// at the scans it is judged at (see [`Judge::after_scan`]).
+    reads: Vec<usize>,
+    uses_prev: bool,
     done: bool,
     /// Event windows still open (their start times), oldest first.
     open: VecDeque<i64>,
@@ -131,6 +137,8 @@ struct React {
     event: Cond,
     delay_ns: i64,
     actions: Vec<(i64, Action)>,
+    /// Its sets of indexed or indirect addresses (times after the firing).
+    located: Vec<LocatedWrite>,
 }
 
 fn t(ns: i64) -> String {
@@ -172,9 +180,30 @@ pub fn prepare(scope: &Scope, scn: &Scenario) -> Result<Prepared, Vec<Diagnostic
         }
     }
     let mut actions = Vec::new();
+    let mut pending = Vec::new();
+    let mut failures = Vec::new();
     for a in &scn.actions {
-        match scope.action(a) {
-            Ok(list) => actions.extend(list),
+        match scope.actions(a) {
+            Ok((list, located)) => {
+                actions.extend(list);
+                for w in located {
+                    // Due before the first scan: found in the initial image.
+                    if w.at_ns <= 0 {
+                        match w.loc.place(&scope.program.initial_image) {
+                            Ok(place) => actions.push((
+                                w.at_ns,
+                                Action::Write {
+                                    place,
+                                    value: w.value,
+                                },
+                            )),
+                            Err(e) => failures.push(set_failure(&w, e)),
+                        }
+                    } else {
+                        pending.push(w);
+                    }
+                }
+            }
             Err(d) => errors.push(d),
         }
     }
@@ -185,11 +214,12 @@ pub fn prepare(scope: &Scope, scn: &Scenario) -> Result<Prepared, Vec<Diagnostic
             kind: r.kind.clone(),
             line: r.line,
         };
-        match (scope.event(&r.event, &mut refs), scope.action(&action)) {
-            (Ok(event), Ok(actions)) => reactions.push(React {
+        match (scope.event(&r.event, &mut refs), scope.actions(&action)) {
+            (Ok(event), Ok((actions, located))) => reactions.push(React {
                 event,
                 delay_ns: r.delay_ns,
                 actions,
+                located,
             }),
             (Err(d), _) | (_, Err(d)) => errors.push(d),
         }
@@ -200,18 +230,27 @@ pub fn prepare(scope: &Scope, scn: &Scenario) -> Result<Prepared, Vec<Diagnostic
         return Err(errors);
     }
     let n = refs.len();
+    let mut always = Vec::new();
+    for r in &reactions {
+        r.event.refs(&mut always);
+    }
     Ok(Prepared {
         actions,
         judge: Judge {
             refs,
             vals: Vec::with_capacity(n),
             prev: Vec::with_capacity(n),
+            always,
+            read_at: vec![0; n],
+            scans: 0,
             started: false,
             checks,
             reactions,
-            failures: Vec::new(),
+            failures,
             last_ns: 0,
             duration_ns: scn.duration_ns,
+            pending,
+            cycle_ns: 0,
         },
     })
 }
@@ -256,6 +295,20 @@ fn check_of(scope: &Scope, e: &ast::Expect, refs: &mut Vec<Ref>) -> Result<Check
     for c in &counts {
         c.refs(&mut names);
     }
+    let mut reads = names.clone();
+    let mut uses_prev = cond.uses_prev() || counts.iter().any(Cond::uses_prev);
+    if let Win::Within {
+        after: Start::Event(ev),
+        ..
+    }
+    | Win::Stable {
+        after: Start::Event(ev),
+        ..
+    } = &win
+    {
+        ev.refs(&mut reads);
+        uses_prev |= ev.uses_prev();
+    }
     // The counts as written, for the failure's values (the checker numbers
     // them left to right, as this walk meets them).
     let mut spans = Vec::new();
@@ -279,6 +332,8 @@ fn check_of(scope: &Scope, e: &ast::Expect, refs: &mut Vec<Ref>) -> Result<Check
         text: e.text.clone(),
         line: e.line,
         names,
+        reads,
+        uses_prev,
         done: false,
         open: VecDeque::new(),
         seen: false,
@@ -328,14 +383,39 @@ fn count_spans(e: &ast::Expr, out: &mut Vec<automat_base::Span>) {
 /// by scan (see the module comment).
 pub struct Judge {
     refs: Vec<Ref>,
+    /// The values after this scan and after the previous one, by ref; an
+    /// entry nobody evaluates at a scan is not read then (it keeps an older
+    /// value that nothing looks at).
     vals: Vec<Val>,
     prev: Vec<Val>,
+    /// The refs of the reactions' events, read at every scan.
+    always: Vec<usize>,
+    /// The scan (counted from 1; 0: before the first) at which each ref
+    /// was last read.
+    read_at: Vec<u64>,
+    scans: u64,
     started: bool,
     checks: Vec<Check>,
     reactions: Vec<React>,
     failures: Vec<Failure>,
     last_ns: i64,
     duration_ns: i64,
+    /// Sets of indexed or indirect addresses not yet due.
+    pending: Vec<LocatedWrite>,
+    /// The run's cycle time: a set due before the next scan is placed
+    /// after this one.
+    cycle_ns: i64,
+}
+
+/// A set whose indexed or indirect address lies outside its data file.
+fn set_failure(w: &LocatedWrite, reason: String) -> Failure {
+    Failure {
+        what: format!("set {}", w.name),
+        line: w.line,
+        at_ns: w.at_ns,
+        reason,
+        values: String::new(),
+    }
 }
 
 /// What one check comes to at a scan: nothing yet, passed, or failed.
@@ -352,13 +432,25 @@ impl Judge {
             refs: Vec::new(),
             vals: Vec::new(),
             prev: Vec::new(),
+            always: Vec::new(),
+            read_at: Vec::new(),
+            scans: 0,
             started: false,
             checks: Vec::new(),
             reactions: Vec::new(),
             failures: Vec::new(),
             last_ns: 0,
             duration_ns: 0,
+            pending: Vec::new(),
+            cycle_ns: 0,
         }
+    }
+
+    /// The run's cycle time (the PLC time between two scans): a set of an
+    /// indexed or indirect address finds its place in the image of the
+    /// last scan before it is due.
+    pub fn set_cycle(&mut self, cycle_ns: i64) {
+        self.cycle_ns = cycle_ns;
     }
 
     /// The names the scenario reads.
@@ -371,6 +463,8 @@ impl Judge {
         self.prev.clear();
         self.prev
             .extend(self.refs.iter().map(|r| r.read(image, sim)));
+        self.vals.clone_from(&self.prev);
+        self.read_at.iter_mut().for_each(|s| *s = self.scans);
         self.started = true;
     }
 
@@ -404,16 +498,36 @@ impl Judge {
 
     /// After the scan at `now`: reads the values, judges, fires reactions.
     pub fn after_scan(&mut self, now: i64, image: &[u8], sim: &RefCell<Sim>) {
+        let step = self.cycle_ns.max(now.saturating_sub(self.last_ns));
         self.last_ns = now;
+        self.scans += 1;
         {
             let s = sim.borrow();
-            self.vals.clear();
-            self.vals
-                .extend(self.refs.iter().map(|r| r.read(image, &s)));
-        }
-        if !self.started {
-            self.prev.clone_from(&self.vals);
-            self.started = true;
+            if !self.started {
+                self.start(image, &s);
+            } else {
+                // Only what is evaluated at this scan (most expectations
+                // wait for their time, or are done): the same verdicts as
+                // reading every name every scan.
+                let mut read = |i: usize| {
+                    if let (Some(at), Some(r), Some(v)) = (
+                        self.read_at.get_mut(i),
+                        self.refs.get(i),
+                        self.vals.get_mut(i),
+                    ) {
+                        if *at != self.scans {
+                            *at = self.scans;
+                            *v = r.read(image, &s);
+                        }
+                    }
+                };
+                self.always.iter().for_each(|&i| read(i));
+                for c in &self.checks {
+                    if !c.done && (now >= c.wake_ns || c.uses_prev) {
+                        c.reads.iter().for_each(|&i| read(i));
+                    }
+                }
+            }
         }
         for k in 0..self.checks.len() {
             let verdict = match self.checks.get_mut(k) {
@@ -447,6 +561,32 @@ impl Judge {
                 for (off, a) in &r.actions {
                     s.schedule(at.saturating_add(*off), a.clone());
                 }
+                self.pending.extend(r.located.iter().map(|w| LocatedWrite {
+                    at_ns: at.saturating_add(w.at_ns),
+                    ..w.clone()
+                }));
+            }
+        }
+        // The sets due before the next scan, at the places this image names.
+        let horizon = now.saturating_add(step);
+        let (due, later): (Vec<LocatedWrite>, Vec<LocatedWrite>) =
+            std::mem::take(&mut self.pending)
+                .into_iter()
+                .partition(|w| w.at_ns <= horizon);
+        self.pending = later;
+        for w in due {
+            match w.loc.place(image) {
+                Ok(place) => sim.borrow_mut().schedule(
+                    w.at_ns,
+                    Action::Write {
+                        place,
+                        value: w.value,
+                    },
+                ),
+                Err(e) => {
+                    let f = set_failure(&w, e);
+                    self.failures.push(f);
+                }
             }
         }
         std::mem::swap(&mut self.vals, &mut self.prev);
@@ -470,8 +610,16 @@ impl Judge {
     pub fn finish(mut self, image: &[u8], sim: &Sim) -> Vec<Failure> {
         let end = self.last_ns;
         let duration = self.duration_ns;
-        // The values after the last scan (`after_scan` moved them).
-        let vals = std::mem::take(&mut self.prev);
+        // The values after the last scan (`after_scan` moved them); what
+        // was not read then is read now (nothing changed them since).
+        let mut vals = std::mem::take(&mut self.prev);
+        for (i, r) in self.refs.iter().enumerate() {
+            if let (Some(&at), Some(v)) = (self.read_at.get(i), vals.get_mut(i)) {
+                if at != self.scans {
+                    *v = r.read(image, sim);
+                }
+            }
+        }
         for k in 0..self.checks.len() {
             let Some(c) = self.checks.get_mut(k) else {
                 continue;
@@ -768,6 +916,7 @@ impl Observer {
             line.push(',');
             let cell = match &c.src {
                 ColSrc::Src(Src::Place(p)) => value::format(image, p),
+                ColSrc::Src(Src::Located(l)) => l.format(image),
                 ColSrc::Src(Src::Signal(i)) => show_value(sim.plant().get(*i)),
                 ColSrc::Src(Src::Quantity(i)) => show_f64(sim.plant().quantity(*i)),
                 ColSrc::Steps(c) => c.cell(image),
@@ -866,7 +1015,8 @@ pub fn run_on<E: Executor + 'static, W: Write>(
         plant: plant.as_ref(),
         bindings: &bindings,
     };
-    let Prepared { actions, judge } = prepare(&scope, scn)?;
+    let Prepared { actions, mut judge } = prepare(&scope, scn)?;
+    judge.set_cycle(project.cycle_time_ns);
     let seed = scn
         .seed
         .or(project.plant.as_ref().map(|p| p.seed))

@@ -141,6 +141,19 @@ const CASES: &[(&str, &[&str])] = &[
     ),
     ("expect never rise(Out) AND prev(Out)", &[]),
     ("expect always change(n) = (n <> prev(n))", &[]),
+    // A name is read only at the scans that evaluate it: an expectation
+    // waiting for its time sees the scan it is judged at, one using `prev`
+    // the scan before too, and one judged on the final state (no scan at
+    // 1 s) what the last scan left, though no scan read its name.
+    ("expect at 50ms n = 0\nexpect at 990ms n = 20", &[]),
+    ("expect at 200ms prev(n) = 10 AND n = 11 AND change(n)", &[]),
+    ("expect at 200ms NOT rise(Out) AND prev(Out)", &[]),
+    ("expect at 1s n = 20 AND x = 10", &[]),
+    (
+        "expect at 1s n = 19",
+        &["3: T#990ms: it is FALSE at the end of the run"],
+    ),
+    ("expect count(In) = 20 AND n = 20 during 0s..1s", &[]),
     // Reactions: at the event's scan, applied by the next scan.
     ("when rise(Out) then release In\nexpect at 500ms n = 6", &[]),
     (

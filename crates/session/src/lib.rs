@@ -42,8 +42,11 @@ pub use symbols::Node;
 
 use automat_ir::Program;
 use automat_project::Sim;
+use automat_runtime::slc_place::looks_dynamic;
 pub use automat_runtime::Limit;
-use automat_runtime::{resolve, resolve_access, value as show, ClockMode, Executor, Monotonic};
+use automat_runtime::{
+    locate, resolve, resolve_access, value as show, ClockMode, Executor, Locator, Monotonic,
+};
 use automat_runtime::{Place, SafeState, ScanObserver};
 use std::cell::RefCell;
 use std::path::PathBuf;
@@ -413,24 +416,57 @@ impl Session {
         resolve(&self.program, path).map_err(Error::Path)
     }
 
-    /// The values of `paths` in the last snapshot, as `--print` shows them.
+    /// Resolves a path for reading at run time: an SLC indexed or
+    /// indirect address (`#N7:5`, `N7:[N7:0]`) is found in each image.
+    pub fn locate(&self, path: &str) -> Result<Locator, Error> {
+        locate(&self.program, path).map_err(Error::Path)
+    }
+
+    /// The values of `paths` in the last snapshot, as `--print` shows them
+    /// (an indexed or indirect address outside its data file in that
+    /// snapshot is an error of this read).
     pub fn read(&self, paths: &[String]) -> Result<Vec<(String, String)>, Error> {
-        let places = paths
+        let locators = paths
             .iter()
-            .map(|p| self.place(p))
-            .collect::<Result<Vec<Place>, Error>>()?;
+            .map(|p| self.locate(p))
+            .collect::<Result<Vec<Locator>, Error>>()?;
         let snap = self.snapshot();
-        Ok(paths
+        paths
             .iter()
-            .zip(&places)
-            .map(|(p, pl)| (p.clone(), show::format(&snap.image, pl)))
-            .collect())
+            .zip(&locators)
+            .map(|(p, l)| {
+                let place = l.place(&snap.image).map_err(Error::Path)?;
+                Ok((p.clone(), show::format(&snap.image, &place)))
+            })
+            .collect()
+    }
+
+    /// An SLC indexed or indirect `path` as the last snapshot has it: its
+    /// direct address (`N7:3`) and place; `None` for any other path. A
+    /// write or force goes to the place so found (CODESYS forces the
+    /// concrete place at the time of the force likewise).
+    fn concrete(&self, path: &str) -> Result<Option<(String, Place)>, Error> {
+        if !looks_dynamic(path) {
+            return Ok(None);
+        }
+        let l = self.locate(path)?;
+        let snap = self.snapshot();
+        let place = l.place(&snap.image).map_err(Error::Path)?;
+        let name = match l.direct(&snap.image) {
+            Some(Ok(n)) => n,
+            _ => path.trim().to_string(),
+        };
+        Ok(Some((name, place)))
     }
 
     /// Where `path` is and what storing `text` there means; refused for
     /// what only the compiler or a chart may change.
     pub fn target(&self, path: &str, text: &str) -> Result<value::Stored, Error> {
         let path = path.trim();
+        if let Some((_, place)) = self.concrete(path)? {
+            return value::encode(&place, text, None)
+                .map_err(|e| Error::Value(format!("`{path}`: {e}")));
+        }
         let a = resolve_access(&self.program, path).map_err(Error::Path)?;
         if a.constant {
             return Err(Error::ReadOnly(format!(
@@ -492,11 +528,17 @@ impl Session {
         self.send(Command::WriteMany(stored))
     }
 
-    /// Forces `path` to `text` until released.
+    /// Forces `path` to `text` until released. An SLC indexed or indirect
+    /// address forces the place it names now, listed under its direct
+    /// address (`N7:[N7:0]` while N7:0 = 3 forces and lists `N7:3`).
     pub fn force(&self, path: &str, text: &str) -> Result<(), Error> {
         let stored = self.target(path, text)?;
+        let shown = match self.concrete(path)? {
+            Some((name, _)) => name,
+            None => path.trim().to_string(),
+        };
         self.send(Command::Force(force::Force {
-            path: path.trim().to_string(),
+            path: shown,
             text: text.trim().to_string(),
             stored,
         }))
@@ -504,16 +546,23 @@ impl Session {
 
     /// Releases the force of `path` (an error when it is not forced).
     pub fn unforce(&self, path: &str) -> Result<(), Error> {
-        let a = resolve_access(&self.program, path.trim()).map_err(Error::Path)?;
+        let place = match self.concrete(path)? {
+            Some((_, place)) => place,
+            None => {
+                resolve_access(&self.program, path.trim())
+                    .map_err(Error::Path)?
+                    .place
+            }
+        };
         // Any value of the right shape names the location.
-        let stored = match a.place.bit {
+        let stored = match place.bit {
             Some(bit) => value::Stored::Bit {
-                offset: a.place.offset as usize,
+                offset: place.offset as usize,
                 bit,
                 value: false,
             },
             None => value::Stored::Bytes {
-                offset: a.place.offset as usize,
+                offset: place.offset as usize,
                 bytes: Vec::new(),
             },
         };
@@ -585,10 +634,10 @@ impl Session {
         period_ns: i64,
         mut sink: Box<dyn FnMut(Update) -> bool + Send>,
     ) -> Result<(), Error> {
-        let places = paths
+        let locators = paths
             .iter()
-            .map(|p| self.place(p))
-            .collect::<Result<Vec<Place>, Error>>()?;
+            .map(|p| self.locate(p))
+            .collect::<Result<Vec<Locator>, Error>>()?;
         let names = paths.to_vec();
         let raw: Sink = Box::new(move |snap: &Arc<Snapshot>| {
             sink(Update {
@@ -596,8 +645,8 @@ impl Session {
                 scans: snap.scans,
                 values: names
                     .iter()
-                    .zip(&places)
-                    .map(|(n, p)| (n.clone(), show::format(&snap.image, p)))
+                    .zip(&locators)
+                    .map(|(n, l)| (n.clone(), l.format(&snap.image)))
                     .collect(),
             })
         });

@@ -14,6 +14,7 @@
 //! naming the rung and the instruction (never an engine's bounds check).
 
 use automat_base::slc::{self, Address, FileType, Part};
+use automat_base::slc_indirect;
 use std::fmt::Write;
 
 /// An address resolved at run time.
@@ -40,106 +41,19 @@ pub struct Dynamic {
 
 /// Does the operand text name an indexed or indirect address?
 pub fn is_dynamic(up: &str) -> bool {
-    up.starts_with('#') || up.contains('[')
-}
-
-/// The word an indirect part is read from: a word of an integer file
-/// (`N7:0`, `T4:0.ACC`), not a bit, a float or another indirect address.
-fn pointer(inner: &str) -> Result<Address, String> {
-    if is_dynamic(inner) {
-        return Err(format!(
-            "`[{inner}]`: the word inside `[ ]` is a direct address (no `#`, no nested `[ ]`)"
-        ));
-    }
-    let a = slc::parse(inner)?;
-    if a.is_bit() || a.is_structure() || a.ty == FileType::F {
-        return Err(format!(
-            "`[{inner}]`: the word inside `[ ]` is an integer word (`N7:0`, `T4:0.ACC`), not a bit, a float or a whole element"
-        ));
-    }
-    Ok(a)
+    slc_indirect::is_dynamic(up)
 }
 
 /// Parses an indexed or indirect address (`up` in upper case).
 pub fn parse(up: &str, slot: usize) -> Result<Dynamic, String> {
-    let bad = |why: &str| Err(format!("`{up}`: {why}"));
-    if let Some(rest) = up.strip_prefix('#') {
-        if rest.contains('[') {
-            return bad("an address is indexed (`#N7:0`) or indirect (`N7:[N7:0]`), not both");
-        }
-        let a = slc::parse(rest)?;
-        if a.part != Part::Element || !matches!(a.ty, FileType::B | FileType::N | FileType::F) {
-            return bad("an indexed address names a word of a B or N file or a float of an F file (`#N7:0`, `#F8:2`)");
-        }
-        return Ok(Dynamic {
-            addr: a,
-            indexed: true,
-            file_from: None,
-            elem_from: None,
-            bit_from: None,
-            flat: false,
-            slot,
-            text: up.to_string(),
-        });
-    }
-    // Each `[word]` is replaced by a placeholder the direct parser accepts,
-    // its place (after the type letter, `:` or `/`) saying what it gives.
-    let mut template = String::new();
-    let (mut file_from, mut elem_from, mut bit_from, mut flat) = (None, None, None, false);
-    let mut rest = up;
-    while let Some(open) = rest.find('[') {
-        let (head, tail) = rest.split_at(open);
-        let Some(close) = tail.find(']') else {
-            return bad("`[` without `]`");
-        };
-        let inner = &tail[1..close];
-        template.push_str(head);
-        let at = pointer(inner)?;
-        let before = template.chars().last();
-        let first = template.len() == 1;
-        match before {
-            Some(c) if first && FileType::from_letter(c).is_some() => {
-                if file_from.replace(at).is_some() {
-                    return bad("the file is given twice");
-                }
-                template.push('9');
-            }
-            Some(':') if elem_from.is_none() => {
-                elem_from = Some(at);
-                template.push('0');
-            }
-            Some('/') if bit_from.is_none() => {
-                flat = !template.contains(':');
-                bit_from = Some(at);
-                template.push('0');
-            }
-            _ => return bad("`[word]` stands for the file number (`N[N7:0]:1`), the element (`N7:[N7:0]`) or the bit (`B3/[N7:1]`, `B3:0/[N7:2]`)"),
-        }
-        rest = &tail[close + 1..];
-    }
-    if rest.contains(']') {
-        return bad("`]` without `[`");
-    }
-    template.push_str(rest);
-    let addr = slc::parse(&template).map_err(|why| format!("`{up}`: {why}"))?;
-    if addr.is_structure() {
-        return bad("a whole timer, counter or control element is no operand here");
-    }
-    if file_from.is_some() {
-        if addr.is_bit() || addr.ty == FileType::F {
-            return bad("an indirect file number is for words of integer files (`N[N7:0]:1`)");
-        }
-        if matches!(addr.ty, FileType::I | FileType::O | FileType::S) {
-            return bad("O, I and S are files 0, 1 and 2: their number is not indirect");
-        }
-    }
+    let i = slc_indirect::parse(up)?;
     Ok(Dynamic {
-        addr,
-        indexed: false,
-        file_from,
-        elem_from,
-        bit_from,
-        flat,
+        addr: i.addr,
+        indexed: i.indexed,
+        file_from: i.file_from,
+        elem_from: i.elem_from,
+        bit_from: i.bit_from,
+        flat: i.flat,
         slot,
         text: up.to_string(),
     })
@@ -201,7 +115,81 @@ pub fn fault_marker(k: usize) -> String {
     format!("(* slc check {k} *)")
 }
 
+/// The array name standing for the file of an indirect file operand
+/// (`#N[N7:0]:0`, slot `k`) in an instruction's ST until the `CASE` over
+/// the files of its type replaces it.
+pub fn file_placeholder(k: usize) -> String {
+    format!("__SLC_FILE_{k}__")
+}
+
 impl super::emit::Emitter<'_> {
+    /// `body`, an instruction working on the run of `words` words from the
+    /// file operand `d` (`#N7:[N7:0]`, `#N[N7:0]:[N7:1]`), preceded by the
+    /// ST finding its first word (`__ix[k]`) and checking that the run lies
+    /// in the data file: outside it, an SLC major fault naming the operand.
+    /// With an indirect file number, one copy of `body` per file of the
+    /// type, chosen at run time.
+    pub(super) fn file_run(&mut self, d: &Dynamic, words: u32, body: &str) -> String {
+        let k = d.slot;
+        let run_check = |this: &mut Self, file: u32| -> String {
+            let Some(f) = this.layout.files.get(&file) else {
+                return String::new();
+            };
+            let len = f.elements;
+            let name = format!("{}{file}", f.ty.letter());
+            let what = format!(
+                "file operand `{}`: the run of {words} {} from its first element lies outside data file {name} ({} 0 to {})",
+                d.text,
+                if f.ty == FileType::F { "elements" } else { "words" },
+                if f.ty == FileType::F { "elements" } else { "words" },
+                len.saturating_sub(1)
+            );
+            this.check(&format!("__ix[{k}] + {words} > {len}"), what)
+        };
+        let Some(f) = d.file_from else {
+            let find = self.index_in(d, d.addr.file);
+            let check = run_check(self, d.addr.file);
+            return format!("{find}{check}{body}");
+        };
+        let files: Vec<u32> = self
+            .layout
+            .files
+            .iter()
+            .filter(|(_, f)| f.ty == d.addr.ty)
+            .map(|(n, _)| *n)
+            .collect();
+        let list = files
+            .iter()
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(", ");
+        let mut s = format!(
+            "    __if[{k}] := INT_TO_DINT({});
+    CASE __if[{k}] OF
+",
+            f.st_path().unwrap_or_default()
+        );
+        for &n in &files {
+            let find = self.index_in(d, n);
+            let check = run_check(self, n);
+            let arr = format!("{}{n}", d.addr.ty.letter());
+            let _ = write!(
+                s,
+                "    {n}:\n{find}{check}{}",
+                body.replace(&file_placeholder(k), &arr)
+            );
+        }
+        let what = format!(
+            "file operand `{}`: the file number is not one of the {} files of the project ({list})",
+            d.text,
+            d.addr.ty.letter()
+        );
+        s.push_str("    ELSE\n");
+        s += &self.check(&format!("__if[{k}] = __if[{k}]"), what);
+        s.push_str("    END_CASE;\n");
+        s
+    }
+
     /// A check: the PLC stops (the subrange fault of `__slc_fault`) when
     /// `bad` holds, the fault saying `what` and the instruction.
     pub(super) fn check(&mut self, bad: &str, what: String) -> String {

@@ -130,6 +130,28 @@ fn lreal(o: &Operand) -> String {
     }
 }
 
+/// A file operand's array and first word, as ST: `N7` and `10` for
+/// `#N7:10`; for `#N7:[N7:0]` the word found before the instruction
+/// (`__ix[k]`) and, for an indirect file (`#N[N7:0]:0`), a placeholder
+/// the instruction's `CASE` over the files replaces
+/// ([`super::dynamic::file_placeholder`]).
+fn run_at(o: &Operand) -> (String, String) {
+    match o {
+        Operand::Dyn(d) => (
+            if d.file_from.is_some() {
+                super::dynamic::file_placeholder(d.slot)
+            } else {
+                d.addr.array()
+            },
+            format!("__ix[{}]", d.slot),
+        ),
+        _ => {
+            let a = addr(o);
+            (a.array(), a.index().to_string())
+        }
+    }
+}
+
 fn addr(o: &Operand) -> Address {
     match o {
         Operand::Addr(a) => *a,
@@ -446,15 +468,24 @@ impl<'a> Emitter<'a> {
         let mut before = String::new();
         let mut after = String::new();
         let kinds = super::instr::find(i.mn).map_or(&[][..], |d| d.operands);
+        let mut runs = Vec::new();
         for (k, o) in i.ops.iter().enumerate() {
             if let Operand::Dyn(d) = o {
+                if kinds.get(k) == Some(&super::instr::Kind::FileRef) {
+                    runs.push(d);
+                    continue;
+                }
                 let dest = kinds.get(k) == Some(&super::instr::Kind::Dest);
                 let (b, a) = self.resolve(d, dest);
                 before.push_str(&b);
                 after.push_str(&a);
             }
         }
-        let body = self.ins_body(n, r, i, level);
+        let mut body = self.ins_body(n, r, i, level);
+        let words = super::parse::run_words(i.mn, &i.ops).unwrap_or(1);
+        for d in runs {
+            body = self.file_run(d, words, &body);
+        }
         format!("{before}{body}{after}")
     }
 
@@ -761,10 +792,7 @@ impl<'a> Emitter<'a> {
             Some(Operand::Int(v)) => *v,
             _ => 1,
         };
-        let at = |o: &Operand| {
-            let a = addr(o);
-            (a.array(), a.index())
-        };
+        let at = run_at;
         match i.mn {
             "COP" => {
                 if is_real(&op(0)) != is_real(&op(1)) {
@@ -778,8 +806,7 @@ impl<'a> Emitter<'a> {
                 )
             }
             "FLL" => {
-                let dest = addr(&op(1));
-                let v = if dest.ty == FileType::F {
+                let v = if is_real(&op(1)) {
                     match op(0) {
                         o @ (Operand::Addr(_) | Operand::Dyn(_)) if is_real(&o) => word(&o),
                         o => format!("LREAL_TO_REAL({})", lreal(&o)),
@@ -885,8 +912,8 @@ impl<'a> Emitter<'a> {
             format!("{ca}[{}]", ci + 1),
             format!("{ca}[{}]", ci + 2),
         );
-        let f = addr(&op(0));
-        let step = format!("{}[{} + {pos}]", f.array(), f.index());
+        let (fa, fi) = run_at(&op(0));
+        let step = format!("{fa}[{fi} + {pos}]");
         let act = if i.mn == "SQO" {
             let d = word(&op(2));
             format!("{d} := __SLC_MVM({step}, {}, {d});", int(&op(1)))

@@ -280,7 +280,7 @@ mod tests {
     }
 
     /// A timer inside a branch has the power frame of the coil taking its
-    /// leg's power (`__ld_n4`); one on a plain rung none of its own.
+    /// leg's power (`__ld_n4`); one on a plain rung likewise (`__ld_n11`).
     #[test]
     fn a_block_in_a_branch_has_a_power_frame() {
         let mut map = SourceMap::new();
@@ -298,7 +298,27 @@ mod tests {
                 .map(|l| l.power.clone())
         };
         assert_eq!(power("TON T4:1 0.01 5 0"), Some(Some("__ld_n4".into())));
-        assert_eq!(power("TON T4:2 0.01 5 0"), Some(None));
+        assert_eq!(power("TON T4:2 0.01 5 0"), Some(Some("__ld_n11".into())));
+    }
+
+    /// A contact whose bit is indirect is no variable of the model: it runs
+    /// as ST on the power into it, which is its frame, and the coil after
+    /// it still has its own.
+    #[test]
+    fn an_indirect_bit_has_a_power_frame() {
+        let mut map = SourceMap::new();
+        map.add("t.slc", "XIC I:1/0 XIC B3:0/[N7:0] OTE O:2/0\n");
+        let sheets = live_sheets(&map);
+        let power = |text: &str| -> Option<Option<String>> {
+            let s = sheets.first()?;
+            let node = s.sheet.nodes.iter().find(|n| n.text.starts_with(text))?;
+            s.live
+                .iter()
+                .find(|l| l.node == node.id)
+                .map(|l| l.power.clone())
+        };
+        assert!(matches!(power("B3:0/[N7:0]"), Some(Some(_))));
+        assert!(matches!(power("O:2/0"), Some(Some(_))));
     }
 
     /// The drawing's notes: above a contact its operand's description,
@@ -328,10 +348,10 @@ mod tests {
     }
 
     /// Contacts, coils and branches go through the graphical model: the
-    /// power flow in `__ld_n<id>` BOOLs, ids unique across the segments a
-    /// timer cuts the rung into; a timer inside a branch is a coil on its
-    /// power (`__ld_n15`, its frame), its ST on that power, and a contact
-    /// on the condition after it (`__bout0`).
+    /// power flow in `__ld_n<id>` BOOLs, ids unique in the program; a timer,
+    /// on the rung or inside a branch, is a coil on its power (`__ld_n7`,
+    /// `__ld_n14`: its frame), its ST on that power, and a contact on the
+    /// condition after it (`__bout0`, `__bout1`).
     #[test]
     fn rungs_lower_through_the_graphical_model() {
         let mut map = SourceMap::new();
@@ -352,29 +372,31 @@ mod tests {
             "    __ld_n6 := (__ld_n4 OR __ld_n5);",
             "    O0[16].0 := __ld_n6;",
             "    __ld_n7 := __ld_n6;",
-            "    __rc := __ld_n7;",
+            "    __bin0 := __ld_n7;",
+            "    __rc := __bin0;",
             "    __x := __SLC_TON(RUNG := __rc, BASE := 10, D := __d, CTL := T4[0], PRE := T4[1], ACC := T4[2], REM := __rem[0]);",
-            "    __ld_n9 := TRUE AND (__rc);",
+            "    __bout0 := __rc;",
+            "    __ld_n8 := __ld_n7 AND (__bout0);",
+            "    __ld_n9 := __ld_n8;",
+            "    IF __ld_n9 THEN B3[0].3 := TRUE; END_IF;",
             "    __ld_n10 := __ld_n9;",
-            "    IF __ld_n10 THEN B3[0].3 := TRUE; END_IF;",
-            "    __ld_n11 := __ld_n10;",
-            "    __rc := __ld_n11;",
+            "    __rc := __ld_n10;",
             "    (* LAD 2 rung 1 *)",
             "    __rc := __mcr;",
-            "    __ld_n13 := TRUE AND (__rc);",
-            "    __ld_n14 := __ld_n13 AND (I1[8].1);",
-            "    __ld_n15 := __ld_n14;",
-            "    __bin0 := __ld_n15;",
-            "    __rc := __bin0;",
+            "    __ld_n12 := TRUE AND (__rc);",
+            "    __ld_n13 := __ld_n12 AND (I1[8].1);",
+            "    __ld_n14 := __ld_n13;",
+            "    __bin1 := __ld_n14;",
+            "    __rc := __bin1;",
             "    __x := __SLC_TON(RUNG := __rc, BASE := 10, D := __d, CTL := T4[3], PRE := T4[4], ACC := T4[5], REM := __rem[1]);",
-            "    __bout0 := __rc;",
-            "    __ld_n16 := __ld_n15 AND (__bout0);",
-            "    __ld_n17 := __ld_n13 AND (I1[8].2);",
-            "    __ld_n18 := (__ld_n16 OR __ld_n17);",
-            "    IF __ld_n18 THEN B3[0].3 := FALSE; END_IF;",
+            "    __bout1 := __rc;",
+            "    __ld_n15 := __ld_n14 AND (__bout1);",
+            "    __ld_n16 := __ld_n12 AND (I1[8].2);",
+            "    __ld_n17 := (__ld_n15 OR __ld_n16);",
+            "    IF __ld_n17 THEN B3[0].3 := FALSE; END_IF;",
         ]
         .join("\n");
         assert!(st.contains(&rung0), "{st}");
-        assert!(st.contains("    __ld_n11 : BOOL;\n"), "{st}");
+        assert!(st.contains("    __ld_n10 : BOOL;\n"), "{st}");
     }
 }

@@ -5,19 +5,21 @@
 //! lives in the same hidden `__ld_n<id>` BOOLs as a PLCopen LD body.
 //!
 //! Every other instruction stays the ST of `emit.rs`, which reads and
-//! writes the rung condition `__rc`: the network is cut there into
-//! segments, the power flow into the instruction written to `__rc` (a coil
-//! on `__rc`), its ST, and the next segment starting from a contact on
-//! `__rc`. Why not blocks: timers, counters, OSR, the math and file
-//! instructions work on the SLC's own words (T4:n's EN/TT/DN bits and ACC,
-//! the OSR storage bit, the math status S:0 and S:5/0) in place, as
-//! RSLogix shows them; IEC blocks with instances would keep a second copy
-//! of that state. Inside a branch, cutting would cut the wired OR: there
-//! the instruction is a coil on a hidden `__bin<k>` (the power into it),
-//! its ST inserted after the line the lowering gives that coil, and a
-//! contact on `__bout<k>` (the condition after it). A rung with JSR, JMP,
-//! RET, TND or MCR inside a branch stays all ST (`emit.rs`'s `__bs`/`__bo`
-//! branch slots).
+//! writes the rung condition `__rc`: the instruction is a coil on a hidden
+//! `__bin<k>` (the power into it, the instruction's frame in the HMI), its
+//! ST inserted after the line the lowering gives that coil (`__rc :=
+//! __bin<k>`, the ST, `__bout<k> := __rc`), and a contact on `__bout<k>`
+//! (the condition after it), so a wired OR around it stays whole. So is an
+//! XIC/XIO/OTE/OTL/OTU whose bit is indexed or indirect (its place is found
+//! at run time: no variable of the model). Why not blocks: timers,
+//! counters, OSR, the math and file instructions work on the SLC's own
+//! words (T4:n's EN/TT/DN bits and ACC, the OSR storage bit, the math
+//! status S:0 and S:5/0) in place, as RSLogix shows them; IEC blocks with
+//! instances would keep a second copy of that state. JSR, JMP, RET, TND,
+//! MCR, LBL and SBR steer the scan: on the rung itself the network is cut
+//! there (the power so far into `__rc`, their ST, the next segment from a
+//! contact on `__rc`); a rung with one inside a branch stays all ST
+//! (`emit.rs`'s `__bs`/`__bo` branch slots).
 
 use super::emit::Emitter;
 use super::parse::{Elem, Ins, Rung};
@@ -35,6 +37,15 @@ fn steers(mn: &str) -> bool {
     matches!(mn, "JSR" | "JMP" | "LBL" | "RET" | "TND" | "MCR" | "SBR")
 }
 
+/// An XIC, XIO, OTE, OTL or OTU whose bit is indexed or indirect: its
+/// place is found at run time, so it is no variable of the model; it runs
+/// as the ST of `emit.rs` on the power into it, as a box does.
+fn dynamic_bit(i: &Ins) -> bool {
+    i.ops
+        .iter()
+        .any(|o| matches!(o, super::parse::Operand::Dyn(_)))
+}
+
 /// Can the rung go through the model (no JSR, JMP, RET, TND or MCR inside
 /// a branch)?
 pub fn fits(rung: &Rung) -> bool {
@@ -45,15 +56,6 @@ pub fn fits(rung: &Rung) -> bool {
             Elem::Bnd(_) => depth = depth.saturating_sub(1),
             Elem::Nxb(_) => {}
             Elem::Ins(i) if depth > 0 && steers(i.mn) => return false,
-            // An indexed or indirect bit is no variable of the model.
-            Elem::Ins(i)
-                if in_model(i.mn)
-                    && i.ops
-                        .iter()
-                        .any(|o| matches!(o, super::parse::Operand::Dyn(_))) =>
-            {
-                return false
-            }
             Elem::Ins(_) => {}
         }
     }
@@ -157,15 +159,17 @@ impl<'a> Emitter<'a> {
                         seg.power = ends;
                     }
                 }
-                Elem::Ins(i) if in_model(i.mn) => {
+                Elem::Ins(i) if in_model(i.mn) && !dynamic_bit(i) => {
                     seg.used = true;
                     let id = self.element(&mut seg, i);
                     seg.power = vec![Wire::of(id)];
                 }
-                Elem::Ins(i) if !seg.open.is_empty() => {
-                    // Inside a branch: a coil takes the power into the
-                    // instruction (its frame in the HMI), the instruction's
-                    // ST runs on it, a contact gives the condition after it.
+                Elem::Ins(i) if !seg.open.is_empty() || !steers(i.mn) => {
+                    // A coil takes the power into the instruction (its
+                    // frame in the HMI), the instruction's ST runs on it, a
+                    // contact gives the condition after it. Inside a branch
+                    // this keeps the wired OR whole; on the rung itself it
+                    // gives a box its own frame too.
                     seg.used = true;
                     let k = self
                         .hidden
@@ -199,6 +203,8 @@ impl<'a> Emitter<'a> {
                     ));
                     seg.power = vec![Wire::of(after)];
                 }
+                // JSR, JMP, RET, TND, MCR, LBL, SBR on the rung itself:
+                // the network is cut there (their ST steers the scan).
                 Elem::Ins(i) => {
                     self.flush(seg, rung, s);
                     let code = self.ins(n, r, i, level);

@@ -641,20 +641,20 @@ impl<'a> Reader<'a> {
                 }
             }
             // A run of words: its last element is used too.
-            for (start, words) in runs(def.name, &ops) {
-                if !matches!(def.name, "BSL" | "BSR")
+            let too_long = run_words(def.name, &ops).is_some_and(|words| {
+                !matches!(def.name, "BSL" | "BSR")
                     && words > 128 + u32::from(matches!(def.name, "SQO" | "SQC"))
-                {
-                    self.err(
-                        Code::E232,
-                        ispan,
-                        format!(
-                            "{at}, `{text}`: the length is 1 to 128 words (BSL, BSR: 2048 bits)"
-                        ),
-                    );
-                    ok = false;
-                    break;
-                }
+            });
+            if too_long {
+                self.err(
+                    Code::E232,
+                    ispan,
+                    format!("{at}, `{text}`: the length is 1 to 128 words (BSL, BSR: 2048 bits)"),
+                );
+                ok = false;
+                break;
+            }
+            for (start, words) in runs(def.name, &ops) {
                 let last = Address {
                     elem: start.elem + words - 1,
                     ..start
@@ -765,6 +765,28 @@ impl<'a> Reader<'a> {
                         "no file operand: a run of words starts with `#` (`#N7:10`)",
                     ));
                 };
+                let rest_up = rest.to_ascii_uppercase();
+                if dynamic::is_dynamic(&rest_up) {
+                    // `#N7:[N7:0]`, `#N[N7:0]:[N7:1]`: a run whose start
+                    // (and file) is found at run time, as RSLogix allows.
+                    let mut d = dynamic::parse(&rest_up, 0).map_err(|why| (Code::E236, why))?;
+                    if d.indexed
+                        || d.is_bit()
+                        || d.addr.part != Part::Element
+                        || d.addr.ty.words() != 1
+                        || matches!(d.addr.ty, FileType::I | FileType::O | FileType::S)
+                    {
+                        return Err((
+                            Code::E236,
+                            format!(
+                                "`{}`: an indirect file operand starts a run of B, N or F elements (`#N7:[N7:0]`, `#N[N7:0]:[N7:1]`)",
+                                t.text
+                            ),
+                        ));
+                    }
+                    d.text = t.up.clone();
+                    return Ok(Operand::Dyn(Box::new(d)));
+                }
                 let a = slc::parse(rest).map_err(|why| (Code::E236, why))?;
                 if a.part != Part::Element
                     || a.ty.words() != 1
@@ -833,6 +855,23 @@ impl<'a> Reader<'a> {
             }
         }
     }
+}
+
+/// The number of words each file operand of `mn` covers (BSL/BSR: the
+/// words holding its bits; SQO/SQC: LEN + 1 steps), `None` for other
+/// instructions or a length that is no constant.
+pub fn run_words(mn: &str, ops: &[Operand]) -> Option<u32> {
+    let n = |k: usize| match ops.get(k) {
+        Some(Operand::Int(n)) => u32::try_from(*n).ok(),
+        _ => None,
+    };
+    Some(match mn {
+        "COP" | "FLL" => n(2)?.max(1),
+        "FFL" | "FFU" => n(3)?.max(1),
+        "BSL" | "BSR" => n(3)?.max(1).div_ceil(16),
+        "SQO" | "SQC" => n(4)? + 1,
+        _ => return None,
+    })
 }
 
 /// The runs of words a file instruction works on: each one's first

@@ -42,12 +42,17 @@ pub fn temp_dir(name: &str) -> PathBuf {
 
 /// [`source`] with the caller's configuration.
 pub fn source_with(text: &str, config: Config) -> Session {
+    source_file("main.st", text, config)
+}
+
+/// A session over one source file named `name` (`main.st`, `main.slc`).
+pub fn source_file(name: &str, text: &str, config: Config) -> Session {
     // One folder per call: tests run in parallel, several on one text.
     static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let dir = std::env::temp_dir().join(format!("automat-session-{}-{n}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
-    let file = dir.join("main.st");
+    let file = dir.join(name);
     std::fs::write(&file, text).expect("write source");
     let (program, _) = build::compile(&[file], None, &[]).unwrap_or_else(|e| panic!("{}", e.text));
     let program = Arc::new(program);
