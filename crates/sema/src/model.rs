@@ -228,6 +228,11 @@ pub struct Model {
     /// The function blocks that were written as `CLASS` (desugared into
     /// function blocks): messages name them as classes.
     pub classes: rustc_hash::FxHashSet<Symbol>,
+    /// (class, variable): a VAR of a class (its own or a base's) declared
+    /// in a `VAR PUBLIC` or `VAR INTERNAL` section, visible from outside
+    /// like an input (the desugaring refused INTERNAL ones used outside
+    /// their namespace, E207).
+    pub public_vars: rustc_hash::FxHashSet<(Symbol, Symbol)>,
 }
 
 impl Model {

@@ -500,7 +500,19 @@ impl<'m> Checker<'m> {
                             Typed::of(v.ty)
                         }
                     }
-                    Some(v) if v.section.is_param() => {
+                    Some(v)
+                        if v.section.is_param()
+                            || self.model.public_vars.contains(&(fb_name, member.sym)) =>
+                    {
+                        if access.writes() && v.constant {
+                            self.err(Code::E040, member.span, |c| {
+                                format!(
+                                    "`{}` of `{}` is a constant",
+                                    c.name(member.sym),
+                                    expr_text(c.interner, base)
+                                )
+                            });
+                        }
                         if access.writes() && v.section == Section::Output {
                             self.err(Code::E042, member.span, |c| {
                                 format!(

@@ -155,7 +155,9 @@ impl<'m> Checker<'m> {
         }
         for (i, v) in pou.vars.vars.iter().enumerate() {
             let used = self.used.get(i).is_some_and(Cell::get);
-            if !used && private(v.section) && v.location.is_none() && !v.constant {
+            // A `VAR PUBLIC` / `VAR INTERNAL` one is an interface, as a parameter.
+            let public = self.model.public_vars.contains(&(pou.name, v.name));
+            if !used && !public && private(v.section) && v.location.is_none() && !v.constant {
                 let (name, owner) = (v.name, pou.name);
                 self.warn(Code::W001, v.span, |c| {
                     format!(

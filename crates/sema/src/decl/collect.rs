@@ -14,6 +14,7 @@ use rustc_hash::FxHashMap;
 
 impl<'a> Builder<'a> {
     pub(super) fn collect(&mut self, units: &'a [SourceUnit], stdlib: &'a SourceUnit) {
+        let mut bases = Vec::new();
         for (u, unit) in units.iter().enumerate() {
             for (i, item) in unit.items.iter().enumerate() {
                 let aref = AstRef {
@@ -34,6 +35,10 @@ impl<'a> Builder<'a> {
                         if c.kind == ast::oop::ClassKind::Class {
                             self.classes.insert(c.name.sym);
                         }
+                        self.collect_public_vars(c);
+                        if let Some(b) = c.extends {
+                            bases.push((c.name.sym, b.sym));
+                        }
                     }
                     Item::Interface(_) => {}
                     // Replaced by its items (`automat_syntax::desugar_namespaces`).
@@ -41,6 +46,7 @@ impl<'a> Builder<'a> {
                 }
             }
         }
+        self.inherit_public_vars(&bases);
         for (i, item) in stdlib.items.iter().enumerate() {
             if let Item::Pou(p) = item {
                 let taken = self.pou_names.contains_key(&p.name.sym)
@@ -53,6 +59,37 @@ impl<'a> Builder<'a> {
                     self.add_pou(p, aref, true);
                 }
             }
+        }
+    }
+
+    /// The class's own `VAR PUBLIC` / `VAR INTERNAL` variables.
+    fn collect_public_vars(&mut self, c: &ast::oop::Class) {
+        use ast::oop::Visibility;
+        for (v, vis) in &c.var_access {
+            if matches!(vis, Visibility::Public | Visibility::Internal) {
+                self.public_vars.insert((c.name.sym, *v));
+            }
+        }
+    }
+
+    /// A derived class has its bases' public variables (`bases`: class,
+    /// base). One pass per level of inheritance, bounded: a cycle was
+    /// reported by the desugaring (E202).
+    fn inherit_public_vars(&mut self, bases: &[(automat_base::Symbol, automat_base::Symbol)]) {
+        // The desugaring refuses more than 64 levels of bases (E213).
+        for _ in 0..=64 {
+            let mut added = Vec::new();
+            for &(c, b) in bases {
+                for &(k, v) in &self.public_vars {
+                    if k == b && !self.public_vars.contains(&(c, v)) {
+                        added.push((c, v));
+                    }
+                }
+            }
+            if added.is_empty() {
+                break;
+            }
+            self.public_vars.extend(added);
         }
     }
 

@@ -149,6 +149,8 @@ pub(crate) struct Builder<'a> {
     init_section: Option<Section>,
     /// Names of the `CLASS`es (see `Model::classes`).
     classes: rustc_hash::FxHashSet<automat_base::Symbol>,
+    /// See `Model::public_vars`.
+    public_vars: rustc_hash::FxHashSet<(automat_base::Symbol, automat_base::Symbol)>,
 }
 
 /// The result of phase 1: the model without bodies checked, the
@@ -190,6 +192,7 @@ pub(crate) fn declare<'a>(
         depth: 0,
         init_section: None,
         classes: rustc_hash::FxHashSet::default(),
+        public_vars: rustc_hash::FxHashSet::default(),
     };
     b.collect(units, stdlib);
     b.index_globals();
@@ -401,6 +404,7 @@ impl<'a> Builder<'a> {
             syms: self.syms,
             codesys: false,
             classes: self.classes,
+            public_vars: self.public_vars,
         };
         let mut diags = self.diags;
         diags.extend(cycles::instance_cycles(&model, self.interner));

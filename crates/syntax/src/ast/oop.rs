@@ -4,7 +4,7 @@
 //! plain POUs and types before any later stage sees the project.
 
 use super::{Ident, Stmt, TypeSpec, VarBlock};
-use automat_base::Span;
+use automat_base::{Span, Symbol};
 
 /// `PUBLIC` / `PRIVATE` / `PROTECTED` / `INTERNAL`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -70,6 +70,10 @@ pub struct Class {
     pub extends: Option<Ident>,
     pub implements: Vec<Ident>,
     pub var_blocks: Vec<VarBlock>,
+    /// The variables of `VAR PUBLIC|PRIVATE|PROTECTED|INTERNAL` sections
+    /// with their access; a variable of a plain `VAR` is PROTECTED (the
+    /// standard's default), inputs and outputs are visible everywhere.
+    pub var_access: Vec<(Symbol, Visibility)>,
     pub methods: Vec<Method>,
     pub properties: Vec<Property>,
     /// The function block body (empty for a CLASS).

@@ -4,6 +4,7 @@
 use super::address::decode_address;
 use super::expr::is_identish;
 use super::Parser;
+use crate::ast::oop::Visibility;
 use crate::ast::{Edge, Ident, Location, Retain, TypeSpec, VarBlock, VarDecl, VarKind};
 use crate::lexer::{Kw, Tok, Token};
 use automat_base::{Code, Diagnostic};
@@ -91,11 +92,21 @@ impl Parser<'_> {
         };
         let mut constant = false;
         let mut retain = Retain::Unspecified;
+        let mut access = None;
         loop {
             match self.peek() {
                 Tok::Kw(Kw::Constant) => constant = true,
                 Tok::Kw(Kw::Retain) => retain = Retain::Retain,
                 Tok::Kw(Kw::NonRetain) => retain = Retain::NonRetain,
+                Tok::Ident(_) if access.is_none() => {
+                    match self.var_access_specifier(opener, kind) {
+                        Some(v) => {
+                            access = Some(v);
+                            continue;
+                        }
+                        None => break,
+                    }
+                }
                 _ => break,
             }
             self.bump();
@@ -105,6 +116,10 @@ impl Parser<'_> {
         self.qualified_names = external;
         self.decl_list(opener, external, |p| p.var_decl(), &mut decls);
         self.qualified_names = false;
+        if let Some(Some(v)) = access {
+            let names = decls.iter().flat_map(|d: &VarDecl| d.names.iter());
+            self.var_access.extend(names.map(|n| (n.sym, v)));
+        }
         VarBlock {
             kind,
             constant,
@@ -112,6 +127,43 @@ impl Parser<'_> {
             decls,
             span: self.span_from(opener.start),
         }
+    }
+
+    /// `PUBLIC` / `PRIVATE` / `PROTECTED` / `INTERNAL` after `VAR` (eaten).
+    /// It is a specifier only when a name, `CONSTANT`, `RETAIN` or `END_VAR` follows:
+    /// `VAR public : INT; END_VAR` declares a variable named `public`.
+    /// `Some(None)`: a specifier where none is allowed (reported).
+    fn var_access_specifier(&mut self, opener: Token, kind: VarKind) -> Option<Option<Visibility>> {
+        let word = [
+            ("PUBLIC", Visibility::Public),
+            ("PRIVATE", Visibility::Private),
+            ("PROTECTED", Visibility::Protected),
+            ("INTERNAL", Visibility::Internal),
+        ]
+        .into_iter()
+        .find(|(w, _)| self.is_word(w))?;
+        let qualifier_follows = matches!(
+            self.nth(1),
+            Tok::Kw(Kw::Constant | Kw::Retain | Kw::NonRetain | Kw::EndVar)
+        );
+        if !(self.name_follows() || qualifier_follows) {
+            return None;
+        }
+        if kind != VarKind::Local {
+            self.error_here(format!(
+                "`{}` applies to a `VAR` section of a class or function block, not to `{}`",
+                word.0,
+                self.text(opener).to_ascii_uppercase()
+            ));
+        } else if !self.var_access_ok {
+            self.error_here(format!(
+                "`{}` applies only to a `VAR` section of a CLASS or FUNCTION_BLOCK (not of a PROGRAM, FUNCTION or METHOD)",
+                word.0
+            ));
+        }
+        let ok = kind == VarKind::Local && self.var_access_ok;
+        self.bump();
+        Some(ok.then_some(word.1))
     }
 
     /// Declarations until `END_VAR`; `decl` parses one at a name or `AT`.

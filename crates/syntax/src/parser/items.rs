@@ -181,6 +181,7 @@ impl Parser<'_> {
                     extends: None,
                     implements: Vec::new(),
                     var_blocks: p.var_blocks,
+                    var_access: Vec::new(),
                     methods: vec![method],
                     properties: Vec::new(),
                     body,
@@ -250,6 +251,7 @@ impl Parser<'_> {
         };
         self.pou_usings = self.usings();
         let mut var_blocks = Vec::new();
+        self.var_access_ok = kind == PouKind::FunctionBlock;
         while let Tok::Kw(k) = self.peek() {
             match k {
                 Kw::VarAccess | Kw::VarConfig => {
@@ -264,6 +266,8 @@ impl Parser<'_> {
                 _ => break,
             }
         }
+        self.var_access_ok = false;
+        let var_access = std::mem::take(&mut self.var_access);
         let (mut methods, mut properties) = (Vec::new(), Vec::new());
         if kind == PouKind::FunctionBlock {
             self.oop_depth += 1;
@@ -310,7 +314,7 @@ impl Parser<'_> {
         }
         let name = name?;
         let span = self.span_from(opener.start);
-        if head.any || !methods.is_empty() || !properties.is_empty() {
+        if head.any || !var_access.is_empty() || !methods.is_empty() || !properties.is_empty() {
             return Some(Item::Class(Box::new(crate::ast::oop::Class {
                 kind: crate::ast::oop::ClassKind::FunctionBlock,
                 name,
@@ -319,6 +323,7 @@ impl Parser<'_> {
                 extends: head.extends,
                 implements: head.implements,
                 var_blocks,
+                var_access,
                 methods,
                 properties,
                 body,

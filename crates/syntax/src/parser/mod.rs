@@ -86,6 +86,11 @@ pub struct Parser<'a> {
     opts: crate::Options,
     /// The hidden globals of the `__NEW(T)` calls read (`heap.rs`).
     heap_templates: Vec<crate::ast::VarBlock>,
+    /// While reading the VAR sections of a CLASS or FUNCTION_BLOCK: an
+    /// access specifier (`VAR PUBLIC`) is allowed; the variables it marks
+    /// are gathered in `var_access` for the class.
+    var_access_ok: bool,
+    var_access: Vec<(automat_base::Symbol, crate::ast::oop::Visibility)>,
 }
 
 /// Parses a lexed file into a [`SourceUnit`]; diagnostics are appended to `diags`.
@@ -119,6 +124,8 @@ pub fn parse_tokens(
         il_fb_r: Vec::new(),
         il_fb_s: Vec::new(),
         heap_templates: Vec::new(),
+        var_access_ok: false,
+        var_access: Vec::new(),
     };
     p.lex_error_ends.sort_unstable();
     if p.toks.last().map(|t| t.tok) != Some(Tok::Eof) {

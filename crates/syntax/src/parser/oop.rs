@@ -32,7 +32,7 @@ impl Parser<'_> {
         }
     }
 
-    fn eat_word(&mut self, w: &str) -> bool {
+    pub(super) fn eat_word(&mut self, w: &str) -> bool {
         if self.is_word(w) {
             self.bump();
             true
@@ -157,7 +157,7 @@ impl Parser<'_> {
     /// Whether the token after the current one can be a name: modifiers are
     /// words too, so `METHOD PUBLIC Step` is read by looking one word ahead
     /// (a contextual keyword such as `STEP` is a name there).
-    fn name_follows(&self) -> bool {
+    pub(super) fn name_follows(&self) -> bool {
         match self.nth(1) {
             Tok::Ident(_) => true,
             Tok::Kw(k) => k.is_contextual(),
@@ -306,7 +306,10 @@ impl Parser<'_> {
         let name = self.expect_ident("the name of the class");
         self.fb_head_after_name(&mut head);
         self.pou_usings = self.usings();
+        self.var_access_ok = true;
         let var_blocks = self.var_blocks_here();
+        self.var_access_ok = false;
+        let var_access = std::mem::take(&mut self.var_access);
         let (mut methods, mut properties) = (Vec::new(), Vec::new());
         self.oop_depth += 1;
         self.members(&mut methods, &mut properties);
@@ -329,6 +332,7 @@ impl Parser<'_> {
             extends: head.extends,
             implements: head.implements,
             var_blocks,
+            var_access,
             methods,
             properties,
             body: Vec::new(),

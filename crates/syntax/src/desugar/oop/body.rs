@@ -286,6 +286,12 @@ impl<'a> Oop<'a> {
             return;
         }
         let span = value.span;
+        if self.is_nothing(value) {
+            // `NULL` (an input `shp := NULL`): designates no instance.
+            let f = format!("__IN_{}", self.name(i));
+            *value = super::poly::call_expr(self.sym(&f), Vec::new(), span);
+            return;
+        }
         match self.type_of_rewritten(value, cx) {
             Some(T::Class(c)) => {
                 if self.bad_impl.contains(&c) {
@@ -428,7 +434,17 @@ impl<'a> Oop<'a> {
                 })
             })
             .unwrap_or(owner_seen);
-        let ok = match vis {
+        if !self.visible(owner, vis, cx) {
+            let (n, o) = (self.name(name.sym), self.name(owner));
+            let v = access_word(vis);
+            self.err(Code::E207, name.span, format!("`{n}` is {v} in `{o}`"));
+        }
+    }
+
+    /// Whether the code compiled under `cx` may use a member of class
+    /// `owner` declared with access `vis`.
+    pub(super) fn visible(&self, owner: Symbol, vis: Visibility, cx: &Ctx) -> bool {
+        match vis {
             Visibility::Public => true,
             // Names in a namespace are qualified (`desugar_namespaces`):
             // the same namespace is the same text before the last dot.
@@ -438,15 +454,6 @@ impl<'a> Oop<'a> {
             }
             Visibility::Private => cx.defined_in == Some(owner),
             Visibility::Protected => cx.defined_in.is_some_and(|k| self.derives_from(k, owner)),
-        };
-        if !ok {
-            let (n, o) = (self.name(name.sym), self.name(owner));
-            let v = match vis {
-                Visibility::Private => "PRIVATE",
-                Visibility::Internal => "INTERNAL",
-                _ => "PROTECTED",
-            };
-            self.err(Code::E207, name.span, format!("`{n}` is {v} in `{o}`"));
         }
     }
 
@@ -470,6 +477,14 @@ impl<'a> Oop<'a> {
         match &mut e.kind {
             ExprKind::Name(id) => {
                 let id = *id;
+                // A class's variable by its name (in a body the class's
+                // variables are its locals): a base's PRIVATE one is refused.
+                if let Some(c) = cx.class {
+                    let shadowed = cx.in_method && cx.locals.contains_key(&id.sym);
+                    if !shadowed && self.var_refused(c, id, cx) {
+                        return;
+                    }
+                }
                 // A variable of that name (in a body: the POU's or class's own).
                 if cx.locals.contains_key(&id.sym) {
                     return;
@@ -557,8 +572,11 @@ impl<'a> Oop<'a> {
                         self.read_property(e, c, b, member, cx);
                         return;
                     }
+                    if self.var_refused(c, member, cx) {
+                        return;
+                    }
                     let own = matches!(&base.kind, ExprKind::Name(b) if b.sym == self.this || b.sym == self.self_);
-                    if !own && self.internal_reachable(c, member.sym, cx) {
+                    if !own && self.field_fn_needed(c, member.sym, cx) {
                         let mut b = (**base).clone();
                         self.expr(&mut b, cx);
                         self.internal_member(e, c, b, member);

@@ -14,7 +14,27 @@ impl<'a> Oop<'a> {
     /// Interface types become their structures; an instance of an abstract
     /// class is refused.
     pub(super) fn retype_decl(&mut self, decl: &mut VarDecl, kind: VarKind) {
+        if self.nothing_init(&decl.ty, decl.init.as_ref()) {
+            decl.init = None;
+        }
         self.retype_spec(&mut decl.ty, kind);
+    }
+
+    /// `NULL` as the initial value of an interface (a structure member
+    /// `a : IShape := NULL;`), or `[NULL, NULL]` of an array of them: no
+    /// instance, the structure's default (the declaration drops it).
+    fn nothing_init(&self, ty: &TypeSpec, init: Option<&Initializer>) -> bool {
+        match (ty, init) {
+            (_, Some(Initializer::Expr(e))) => self.itf_decl(ty).is_some() && self.is_nothing(e),
+            (TypeSpec::Array { elem, .. }, Some(Initializer::Array { elems, .. })) => {
+                elems.iter().all(|el| {
+                    el.value
+                        .as_ref()
+                        .is_some_and(|v| self.nothing_init(elem, Some(v)))
+                })
+            }
+            _ => false,
+        }
     }
 
     pub(super) fn retype_spec(&mut self, ty: &mut TypeSpec, kind: VarKind) {

@@ -38,6 +38,13 @@
 //!   `__BODY`, whose copy in each class runs that class's body).
 //!   `REF(d)` and a reference to a derived class convert (`__IC_`); a
 //!   reference to a base does not go into a reference to a derived class.
+//! - Variable access: a VAR is PROTECTED unless its section says `PUBLIC`,
+//!   `PRIVATE` or `INTERNAL` (`Class::var_access`). Code that may reach an
+//!   PROTECTED or PRIVATE variable of another instance (`x.v`, `r^.v`)
+//!   reads it as `__PF_<C>__<v>(__THIS := x)^` (`private.rs`); a PUBLIC or
+//!   INTERNAL one stays `x.v`, which the checker lets any code see. A
+//!   PRIVATE or INTERNAL one out of reach is E207, any other the checker's
+//!   E024.
 //!
 //! Every misuse is reported here, at the source's names (E200–E213).
 
@@ -353,6 +360,7 @@ fn promote_bases(units: &mut [SourceUnit]) {
                 extends: None,
                 implements: Vec::new(),
                 var_blocks: std::mem::take(&mut p.var_blocks),
+                var_access: Vec::new(),
                 methods: Vec::new(),
                 properties: Vec::new(),
                 body: body.clone(),
@@ -766,6 +774,16 @@ fn same_type(a: &Option<TypeSpec>, b: &Option<TypeSpec>) -> bool {
         (Some(TypeSpec::Named(x)), Some(TypeSpec::Named(y))) => x.sym == y.sym,
         (Some(_), Some(_)) => true,
         _ => false,
+    }
+}
+
+/// The word of an access specifier, for messages.
+fn access_word(v: Visibility) -> &'static str {
+    match v {
+        Visibility::Public => "PUBLIC",
+        Visibility::Private => "PRIVATE",
+        Visibility::Protected => "PROTECTED",
+        Visibility::Internal => "INTERNAL",
     }
 }
 

@@ -198,6 +198,7 @@ impl<'a> Oop<'a> {
         let (bn, n) = (self.name(b), self.name(member.sym));
         match self.class_var_kind(b, member.sym) {
             Some((_, VarKind::Input | VarKind::Output)) => {}
+            Some(_) if self.var_refused(b, member, cx) => return,
             Some(_) if self.internal_reachable(b, member.sym, cx) => {}
             Some(_) => {
                 self.err(

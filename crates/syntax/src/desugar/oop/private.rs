@@ -3,7 +3,11 @@
 //! a method of `Node` for `p : REF_TO Node` (a linked list), `other.val`.
 //! Those variables are PROTECTED (the standard's default for a VAR
 //! section): the methods, accessors and body of the declaring class and of
-//! the classes derived from it reach them, through any instance.
+//! the classes derived from it reach them, through any instance; a
+//! `VAR PRIVATE` one only the declaring class's code. A `VAR PUBLIC` one
+//! stays a plain member that the checker lets any code see
+//! (`Model::public_vars`), as a `VAR INTERNAL` one once this stage has
+//! refused its uses outside the class's namespace (E207).
 //!
 //! The checker only lets `__THIS.v` reach such a variable, so the access
 //! becomes `__PF_<C>__<v>(__THIS := instance)^`, a function returning the
@@ -23,17 +27,61 @@ impl<'a> Oop<'a> {
         })
     }
 
+    /// The class declaring the internal variable `v` of class `c` (not an
+    /// input, output or in-out) and its access: as its `VAR PUBLIC`,
+    /// `VAR PRIVATE`... section says, PROTECTED for a plain `VAR`.
+    pub(super) fn var_access(&self, c: Symbol, v: Symbol) -> Option<(Symbol, Visibility)> {
+        let (_, kind) = self.class_var_kind(c, v)?;
+        if matches!(kind, VarKind::Input | VarKind::Output | VarKind::InOut) {
+            return None;
+        }
+        let owner = self.var_owner(c, v)?;
+        let vis = self
+            .class(owner)?
+            .var_access
+            .iter()
+            .find(|(n, _)| *n == v)
+            .map_or(Visibility::Protected, |(_, a)| *a);
+        Some((owner, vis))
+    }
+
     /// `v` is an internal variable of class `c` that the code compiled
     /// under `cx` may reach through an instance of `c`.
     pub(super) fn internal_reachable(&self, c: Symbol, v: Symbol, cx: &Ctx) -> bool {
-        let internal = matches!(
-            self.class_var_kind(c, v),
-            Some((_, kind)) if !matches!(kind, VarKind::Input | VarKind::Output | VarKind::InOut)
-        );
-        let (Some(d), Some(owner)) = (cx.defined_in, self.var_owner(c, v)) else {
+        self.var_access(c, v)
+            .is_some_and(|(owner, vis)| self.visible(owner, vis, cx))
+    }
+
+    /// `x.v` must go through `__PF_` (`internal_member`): a reachable
+    /// PROTECTED or PRIVATE variable. A PUBLIC or INTERNAL one stays a
+    /// member, which the checker lets any code see (`Model::public_vars`).
+    pub(super) fn field_fn_needed(&self, c: Symbol, v: Symbol, cx: &Ctx) -> bool {
+        self.var_access(c, v).is_some_and(|(owner, vis)| {
+            matches!(vis, Visibility::Protected | Visibility::Private)
+                && self.visible(owner, vis, cx)
+        })
+    }
+
+    /// A use of the internal variable `v` of class `c` declared PRIVATE or
+    /// INTERNAL where its access does not reach: E207 (`true`). Other
+    /// variables that are out of reach are the checker's E024.
+    pub(super) fn var_refused(&mut self, c: Symbol, v: Ident, cx: &Ctx) -> bool {
+        let Some((owner, vis)) = self.var_access(c, v.sym) else {
             return false;
         };
-        internal && self.derives_from(d, owner)
+        if !matches!(vis, Visibility::Private | Visibility::Internal)
+            || self.visible(owner, vis, cx)
+        {
+            return false;
+        }
+        let (n, o) = (self.name(v.sym), self.name(owner));
+        let w = access_word(vis);
+        self.err(
+            Code::E207,
+            v.span,
+            format!("the variable `{n}` is {w} in `{o}`"),
+        );
+        true
     }
 
     /// `e` (`base.member`, `base` an instance of class `c`) as
