@@ -295,8 +295,8 @@ codes! {
         "A class that IMPLEMENTS an interface must implement every method and property of it (and of the interfaces it extends), with the same return type.";
     E206 => "unknown method",
         "The call names no method of the class or interface of its instance (methods are looked up in the class and its bases, and for interface variables in the interface and the interfaces it extends).";
-    E207 => "method not accessible",
-        "A PRIVATE method or property is callable only from the methods and body of its own class, a PROTECTED one also from derived classes, an INTERNAL one from code of the same namespace (not the nested ones; a class outside any namespace: code outside namespaces).";
+    E207 => "member not accessible",
+        "A PRIVATE method, property or variable (`VAR PRIVATE`) is reachable only from the methods and body of its own class, a PROTECTED one also from derived classes, an INTERNAL one from code of the same namespace (not the nested ones; a class outside any namespace: code outside namespaces).";
     E208 => "THIS or SUPER out of place",
         "`THIS` is the current instance, inside a method or the body of a function block or class; `SUPER` its base part, only in a class that EXTENDS another. Write them dereferenced: `THIS^.x`, `SUPER^.m()`.";
     E209 => "duplicate method",
