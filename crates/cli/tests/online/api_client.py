@@ -469,11 +469,11 @@ def slc(base, token):
     unresolved = [e["id"] for e in es if e["kind"] in ("contact", "coil") and not e.get("power")]
     check("slc drawings: every contact and coil has a power flow the program has", unresolved == [], unresolved)
     eng.step(3)
-    v = eng.read("SLC.__ld_n7", "I:1/1", "T4:0.ACC", "B3:0/1")
+    v = eng.read("SLC.__ld_n9", "I:1/1", "T4:0.ACC", "B3:0/1")
     check("slc drawings: the paths read",
-          set(v) == {"SLC.__ld_n7", "I:1/1", "T4:0.ACC", "B3:0/1"}, v)
+          set(v) == {"SLC.__ld_n9", "I:1/1", "T4:0.ACC", "B3:0/1"}, v)
     check("slc values: data-file bits and symbols read as 1/0, IEC BOOLs as TRUE/FALSE",
-          (v.get("B3:0/1"), v.get("I:1/1"), eng.read("X1").get("X1"), v.get("SLC.__ld_n7")) == ("1", "0", "1", "FALSE"), v)
+          (v.get("B3:0/1"), v.get("I:1/1"), eng.read("X1").get("X1"), v.get("SLC.__ld_n9")) == ("1", "0", "1", "FALSE"), v)
     r = eng.post("/api/v1/write", {"path": "B3:0/12", "value": 1})
     check("slc write: a bit takes 1", r.status_code == 200, f"{r.status_code} {r.text[:200]}")
     check("slc write: read back 1", eng.read("B3:0/12") == {"B3:0/12": "1"}, eng.read("B3:0/12"))
