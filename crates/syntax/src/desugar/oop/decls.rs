@@ -3,6 +3,15 @@
 use super::*;
 use crate::ast::{FieldInit, Initializer};
 
+/// What an interface's initial value becomes.
+enum ItfInit {
+    /// Left as written (not an instance: the checker reports it).
+    AsWritten,
+    /// No instance: the structure's default (NULL, or an error reported).
+    Nothing,
+    Value(Initializer),
+}
+
 impl<'a> Oop<'a> {
     pub(super) fn retype_block(&mut self, b: &mut VarBlock) {
         let kind = b.kind;
@@ -239,19 +248,55 @@ impl<'a> Oop<'a> {
     }
 
     fn itf_init(&mut self, decl: &mut VarDecl, cx: &Ctx, sources: &HashMap<Symbol, Option<Expr>>) {
+        // `[sq, NULL, c2]` of an array of interfaces: each element as a
+        // scalar's initial value is (a NULL one designating nothing).
+        if let (TypeSpec::Array { elem, .. }, Some(Initializer::Array { elems, .. })) =
+            (&decl.ty, &mut decl.init)
+        {
+            let Some((itf, by_ref)) = self.itf_decl(elem) else {
+                return;
+            };
+            for el in elems.iter_mut() {
+                let Some(Initializer::Expr(e)) = &el.value else {
+                    continue;
+                };
+                let span = e.span;
+                match self.itf_value(e.clone(), itf, by_ref, cx, sources) {
+                    ItfInit::AsWritten => {}
+                    ItfInit::Nothing => el.value = Some(self.itf_struct(0, None, span)),
+                    ItfInit::Value(v) => el.value = Some(v),
+                }
+            }
+            return;
+        }
         let Some(Initializer::Expr(init)) = &decl.init else {
             return;
         };
         let Some((itf, by_ref)) = self.itf_decl(&decl.ty) else {
             return;
         };
-        if self.is_nothing(init) {
-            decl.init = None;
-            return;
+        match self.itf_value(init.clone(), itf, by_ref, cx, sources) {
+            ItfInit::AsWritten => {}
+            ItfInit::Nothing => decl.init = None,
+            ItfInit::Value(v) => decl.init = Some(v),
         }
-        let Some(init) = self.itf_init_source(init.clone(), itf, sources, cx) else {
-            decl.init = None;
-            return;
+    }
+
+    /// The initial value `init` of an interface `itf` (or, `by_ref`, of a
+    /// reference to a base class) as the interface's structure.
+    fn itf_value(
+        &mut self,
+        init: Expr,
+        itf: Symbol,
+        by_ref: bool,
+        cx: &Ctx,
+        sources: &HashMap<Symbol, Option<Expr>>,
+    ) -> ItfInit {
+        if self.is_nothing(&init) {
+            return ItfInit::Nothing;
+        }
+        let Some(init) = self.itf_init_source(init, itf, sources, cx) else {
+            return ItfInit::Nothing;
         };
         let span = init.span;
         let inst = if by_ref {
@@ -261,20 +306,19 @@ impl<'a> Oop<'a> {
                 {
                     match args.first().and_then(|a| a.value.clone()) {
                         Some(v) => v,
-                        None => return,
+                        None => return ItfInit::AsWritten,
                     }
                 }
-                _ => return,
+                _ => return ItfInit::AsWritten,
             }
         } else {
             init
         };
         let T::Class(c) = self.type_of(&inst, cx) else {
-            return;
+            return ItfInit::AsWritten;
         };
         if self.bad_impl.contains(&c) || self.broken.contains(&c) {
-            decl.init = None;
-            return;
+            return ItfInit::Nothing;
         }
         if !self.implements(c, itf) {
             let cn = self.name(c);
@@ -286,14 +330,16 @@ impl<'a> Oop<'a> {
                 None => format!("`{cn}` does not implement interface `{}`", self.name(itf)),
             };
             self.err(Code::E212, span, msg);
-            decl.init = None;
-            return;
+            return ItfInit::Nothing;
         }
         let k = self.ids.get(&c).copied().unwrap_or(0);
+        ItfInit::Value(self.itf_struct(k, Some(inst), span))
+    }
+
+    /// `(__id := k, __r<k> := REF(inst))`: the interface's structure
+    /// designating `inst` of the class numbered `k`; `(__id := 0)` nothing.
+    fn itf_struct(&mut self, k: u32, inst: Option<Expr>, span: Span) -> Initializer {
         let id_sym = self.sym("__id");
-        let r = format!("__r{k}");
-        let r = self.sym(&r);
-        let rsym = self.sym("REF");
         let lit = Expr {
             kind: ExprKind::Literal(Box::new(Literal {
                 kind: LitKind::Int(i128::from(k)),
@@ -301,21 +347,22 @@ impl<'a> Oop<'a> {
             })),
             span,
         };
-        decl.init = Some(Initializer::Struct {
-            fields: vec![
-                FieldInit {
-                    name: Ident { sym: id_sym, span },
-                    value: Initializer::Expr(lit),
-                    span,
-                },
-                FieldInit {
-                    name: Ident { sym: r, span },
-                    value: Initializer::Expr(super::poly::call_expr(rsym, vec![inst], span)),
-                    span,
-                },
-            ],
+        let mut fields = vec![FieldInit {
+            name: Ident { sym: id_sym, span },
+            value: Initializer::Expr(lit),
             span,
-        });
+        }];
+        if let Some(inst) = inst {
+            let r = format!("__r{k}");
+            let r = self.sym(&r);
+            let rsym = self.sym("REF");
+            fields.push(FieldInit {
+                name: Ident { sym: r, span },
+                value: Initializer::Expr(super::poly::call_expr(rsym, vec![inst], span)),
+                span,
+            });
+        }
+        Initializer::Struct { fields, span }
     }
 
     pub(super) fn locals_of(blocks: &[VarBlock]) -> HashMap<Symbol, TypeSpec> {
