@@ -596,14 +596,25 @@ impl<'a> Oop<'a> {
                 // `itf = NULL`, `itf <> 0`: whether an instance is assigned.
                 if matches!(op, BinaryOp::Eq | BinaryOp::Ne) {
                     let (lt, rt) = (self.type_of(lhs, cx), self.type_of(rhs, cx));
-                    if matches!(lt, T::Itf(_)) && self.is_nothing(rhs) {
+                    // A value that is no place (a call's result) through
+                    // `__IZ_<A>` (nulltest.rs).
+                    let ne = *op == BinaryOp::Ne;
+                    if let (T::Itf(a), true) = (&lt, self.is_nothing(rhs)) {
                         self.expr(lhs, cx);
-                        self.itf_id(lhs, rhs);
+                        if is_place(lhs) {
+                            self.itf_id(lhs, rhs);
+                        } else {
+                            *e = self.itf_null_call(*a, lhs, ne, e.span);
+                        }
                         return;
                     }
-                    if matches!(rt, T::Itf(_)) && self.is_nothing(lhs) {
+                    if let (T::Itf(a), true) = (&rt, self.is_nothing(lhs)) {
                         self.expr(rhs, cx);
-                        self.itf_id(rhs, lhs);
+                        if is_place(rhs) {
+                            self.itf_id(rhs, lhs);
+                        } else {
+                            *e = self.itf_null_call(*a, rhs, ne, e.span);
+                        }
                         return;
                     }
                     // `i1 = i2`: the same instance (or both none). Two places

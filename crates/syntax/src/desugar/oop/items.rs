@@ -262,6 +262,12 @@ impl<'a> Oop<'a> {
         for b in var_blocks.iter_mut().skip(1) {
             self.retype_block(b);
         }
+        // The result, assigned by the method's name, has its type there
+        // (`Make := sq;` for an interface result designates `sq`;
+        // `type_of` looks it up through `cx.result`).
+        if let Some(r) = &meth.return_type {
+            self.returns.insert(fname, r.clone());
+        }
         let cx = Ctx {
             class: Some(c),
             defined_in: Some(k),

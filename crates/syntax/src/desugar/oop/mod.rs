@@ -53,6 +53,7 @@ mod body_call;
 mod decls;
 mod interfaces;
 mod items;
+mod nulltest;
 mod poly;
 mod private;
 mod rules;
@@ -204,6 +205,13 @@ pub fn desugar_oop(units: &mut [SourceUnit], interner: &mut Interner) -> Vec<Dia
         k += 1;
         if let Some((u, _)) = itfs.get(&a) {
             out.push((*u, d.itf_equal_fn(a, b)));
+        }
+    }
+    let mut k = 0;
+    while let Some(&a) = d.itf_nulls.get(k) {
+        k += 1;
+        if let Some((u, _)) = itfs.get(&a) {
+            out.push((*u, d.itf_null_fn(a)));
         }
     }
     let mut k = 0;
@@ -530,6 +538,9 @@ struct Oop<'a> {
     /// Pairs of interfaces compared by `__IE_<A>__<B>` (values that are not
     /// two places of one interface), in the order first met.
     itf_equals: Vec<(Symbol, Symbol)>,
+    /// Interfaces whose values that are not places are compared to NULL
+    /// (`__IZ_<A>`), in the order first met.
+    itf_nulls: Vec<Symbol>,
     /// Pairs (source, destination) of `__QUERYINTERFACE` calls (`__IQ_`).
     itf_queries: Vec<(Symbol, Symbol)>,
     /// `__QUERYPOINTER` calls: (source interface, pointer target type as
@@ -585,6 +596,7 @@ impl<'a> Oop<'a> {
             itf_structs,
             returns: HashMap::new(),
             itf_equals: Vec::new(),
+            itf_nulls: Vec::new(),
             itf_queries: Vec::new(),
             itf_pointers: Vec::new(),
             types: HashMap::new(),

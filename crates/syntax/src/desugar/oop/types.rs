@@ -117,6 +117,14 @@ impl<'a> Oop<'a> {
                 if let Some(t) = cx.locals.get(&id.sym) {
                     return self.spec_t(t);
                 }
+                // A method's result, by the method's name.
+                if let Some((r, f)) = cx.result {
+                    if r == id.sym {
+                        if let Some(t) = self.returns.get(&f) {
+                            return self.spec_t(t);
+                        }
+                    }
+                }
                 if let Some(c) = cx.class {
                     if let Some(t) = self.class_var(c, id.sym) {
                         return self.spec_t(&t);
