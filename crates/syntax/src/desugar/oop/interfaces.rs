@@ -83,33 +83,7 @@ impl<'a> Oop<'a> {
         }
         let f = format!("__IE_{}__{}", self.name(a), self.name(b));
         let f = self.sym(&f);
-        let arg = |v: &Expr| Arg {
-            name: None,
-            dir: ArgDir::In,
-            value: Some(v.clone()),
-            span,
-        };
-        let call = Expr {
-            kind: ExprKind::Call {
-                callee: Box::new(Expr {
-                    kind: ExprKind::Name(Ident { sym: f, span }),
-                    span,
-                }),
-                args: vec![arg(l), arg(r)],
-            },
-            span,
-        };
-        if negate {
-            Expr {
-                kind: ExprKind::Unary {
-                    op: crate::ast::UnaryOp::Not,
-                    operand: Box::new(call),
-                },
-                span,
-            }
-        } else {
-            call
-        }
+        negated_call(f, &[l, r], negate, span)
     }
 
     /// `NULL` or the literal 0 (CODESYS writes `itf <> 0`).
@@ -342,5 +316,39 @@ fn named_call(f: Symbol, args: [(Symbol, Expr); 2], span: Span) -> Expr {
             args,
         },
         span,
+    }
+}
+
+/// `f(a, b, …)` with positional inputs, under NOT when `negate` (a hidden
+/// comparison function called for `=` or `<>`).
+pub(super) fn negated_call(f: Symbol, args: &[&Expr], negate: bool, span: Span) -> Expr {
+    let call = Expr {
+        kind: ExprKind::Call {
+            callee: Box::new(Expr {
+                kind: ExprKind::Name(Ident { sym: f, span }),
+                span,
+            }),
+            args: args
+                .iter()
+                .map(|v| Arg {
+                    name: None,
+                    dir: ArgDir::In,
+                    value: Some((*v).clone()),
+                    span,
+                })
+                .collect(),
+        },
+        span,
+    };
+    if negate {
+        Expr {
+            kind: ExprKind::Unary {
+                op: crate::ast::UnaryOp::Not,
+                operand: Box::new(call),
+            },
+            span,
+        }
+    } else {
+        call
     }
 }

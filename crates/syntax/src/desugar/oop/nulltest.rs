@@ -15,32 +15,7 @@ impl<'a> Oop<'a> {
         }
         let f = format!("__IZ_{}", self.name(a));
         let f = self.sym(&f);
-        let call = Expr {
-            kind: ExprKind::Call {
-                callee: Box::new(Expr {
-                    kind: ExprKind::Name(Ident { sym: f, span }),
-                    span,
-                }),
-                args: vec![Arg {
-                    name: None,
-                    dir: ArgDir::In,
-                    value: Some(v.clone()),
-                    span,
-                }],
-            },
-            span,
-        };
-        if negate {
-            Expr {
-                kind: ExprKind::Unary {
-                    op: crate::ast::UnaryOp::Not,
-                    operand: Box::new(call),
-                },
-                span,
-            }
-        } else {
-            call
-        }
+        super::interfaces::negated_call(f, &[v], negate, span)
     }
 
     /// `FUNCTION __IZ_<A> : BOOL` over `__a : __ITF_A`: `__a.__id = 0`.
