@@ -252,7 +252,8 @@ impl SlcPlace {
                 .first()
                 .ok_or_else(|| format!("`{t}`: no data file"))?,
         };
-        let name = format!("{letter}{}", file.number);
+        // Only for the messages: no allocation on a read that succeeds.
+        let name = || format!("{letter}{}", file.number);
         let io = matches!(a.ty, FileType::I | FileType::O);
         let per_elem = if io { IO_SLOT_WORDS } else { a.ty.words() };
         let len = i64::from(file.len);
@@ -272,8 +273,13 @@ impl SlcPlace {
             let i = i64::from(a.index()) + s24;
             if !(0..len).contains(&i) {
                 return Err(format!(
-                    "indexed address `{t}` + S:24 ({s24}) lies outside data file {name} ({} 0 to {})",
-                    if a.ty == FileType::F { "elements" } else { "words" },
+                    "indexed address `{t}` + S:24 ({s24}) lies outside data file {} ({} 0 to {})",
+                    name(),
+                    if a.ty == FileType::F {
+                        "elements"
+                    } else {
+                        "words"
+                    },
                     len - 1
                 ));
             }
@@ -283,7 +289,8 @@ impl SlcPlace {
             let b = word(image, p)?;
             if !(0..len * 16).contains(&b) {
                 return Err(format!(
-                    "indirect address `{t}`: the bit {b} lies outside data file {name} (bits 0 to {})",
+                    "indirect address `{t}`: the bit {b} lies outside data file {} (bits 0 to {})",
+                    name(),
                     len * 16 - 1
                 ));
             }
@@ -296,7 +303,8 @@ impl SlcPlace {
         };
         if !(0..elements).contains(&elem) {
             return Err(format!(
-                "indirect address `{t}`: the element {elem} is not one of data file {name} (0 to {})",
+                "indirect address `{t}`: the element {elem} is not one of data file {} (0 to {})",
+                name(),
                 elements - 1
             ));
         }

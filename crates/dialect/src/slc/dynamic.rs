@@ -14,29 +14,27 @@
 //! naming the rung and the instruction (never an engine's bounds check).
 
 use automat_base::slc::{self, Address, FileType, Part};
-use automat_base::slc_indirect;
+use automat_base::slc_indirect::{self, Indirect};
 use std::fmt::Write;
 
-/// An address resolved at run time.
+/// An operand whose address is resolved at run time: the address as
+/// `automat_base::slc_indirect` parses it, with its slot in the generated
+/// code.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Dynamic {
-    /// The address with its run-time parts at 0 (the element, the bit) or,
-    /// for an indirect file, at file 9 of its type.
-    pub addr: Address,
-    /// `#`: offset by the index register S:24.
-    pub indexed: bool,
-    /// The word holding the file number (`N[N7:0]:1`).
-    pub file_from: Option<Address>,
-    /// The word holding the element number (`N7:[N7:0]`).
-    pub elem_from: Option<Address>,
-    /// The word holding the bit number (`B3:0/[N7:2]`, flat `B3/[N7:1]`).
-    pub bit_from: Option<Address>,
-    /// `bit_from` numbers the bits of the whole file (`B3/[N7:1]`).
-    pub flat: bool,
+    pub at: Indirect,
     /// This operand's slot in `__ix`, `__ib`, `__if`, `__iv`.
     pub slot: usize,
     /// As written (upper case), for messages and drawings.
     pub text: String,
+}
+
+/// A `Dynamic` reads as its address (`d.addr`, `d.elem_from`, ...).
+impl std::ops::Deref for Dynamic {
+    type Target = Indirect;
+    fn deref(&self) -> &Indirect {
+        &self.at
+    }
 }
 
 /// Does the operand text name an indexed or indirect address?
@@ -46,14 +44,8 @@ pub fn is_dynamic(up: &str) -> bool {
 
 /// Parses an indexed or indirect address (`up` in upper case).
 pub fn parse(up: &str, slot: usize) -> Result<Dynamic, String> {
-    let i = slc_indirect::parse(up)?;
     Ok(Dynamic {
-        addr: i.addr,
-        indexed: i.indexed,
-        file_from: i.file_from,
-        elem_from: i.elem_from,
-        bit_from: i.bit_from,
-        flat: i.flat,
+        at: slc_indirect::parse(up)?,
         slot,
         text: up.to_string(),
     })
@@ -151,24 +143,8 @@ impl super::emit::Emitter<'_> {
             let check = run_check(self, d.addr.file);
             return format!("{find}{check}{body}");
         };
-        let files: Vec<u32> = self
-            .layout
-            .files
-            .iter()
-            .filter(|(_, f)| f.ty == d.addr.ty)
-            .map(|(n, _)| *n)
-            .collect();
-        let list = files
-            .iter()
-            .map(|n| n.to_string())
-            .collect::<Vec<_>>()
-            .join(", ");
-        let mut s = format!(
-            "    __if[{k}] := INT_TO_DINT({});
-    CASE __if[{k}] OF
-",
-            f.st_path().unwrap_or_default()
-        );
+        let files = self.files_of(d.addr.ty);
+        let mut s = file_case(k, f);
         for &n in &files {
             let find = self.index_in(d, n);
             let check = run_check(self, n);
@@ -179,12 +155,35 @@ impl super::emit::Emitter<'_> {
                 body.replace(&file_placeholder(k), &arr)
             );
         }
+        s += &self.no_such_file(d, "file operand", &files);
+        s
+    }
+
+    /// The numbers of the project's data files of type `ty`.
+    fn files_of(&self, ty: FileType) -> Vec<u32> {
+        self.layout
+            .files
+            .iter()
+            .filter(|(_, f)| f.ty == ty)
+            .map(|(n, _)| *n)
+            .collect()
+    }
+
+    /// The end of the CASE over an indirect file number: any other number
+    /// is a major fault naming `d` and the files there are.
+    fn no_such_file(&mut self, d: &Dynamic, what: &str, files: &[u32]) -> String {
+        let k = d.slot;
+        let list = files
+            .iter()
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(", ");
         let what = format!(
-            "file operand `{}`: the file number is not one of the {} files of the project ({list})",
+            "{what} `{}`: the file number is not one of the {} files of the project ({list})",
             d.text,
             d.addr.ty.letter()
         );
-        s.push_str("    ELSE\n");
+        let mut s = String::from("    ELSE\n");
         s += &self.check(&format!("__if[{k}] = __if[{k}]"), what);
         s.push_str("    END_CASE;\n");
         s
@@ -301,13 +300,7 @@ impl super::emit::Emitter<'_> {
         let Some(f) = d.file_from else {
             return (self.index_in(d, d.addr.file), String::new());
         };
-        let files: Vec<u32> = self
-            .layout
-            .files
-            .iter()
-            .filter(|(_, f)| f.ty == d.addr.ty)
-            .map(|(n, _)| *n)
-            .collect();
+        let files = self.files_of(d.addr.ty);
         if files.is_empty() {
             let what = format!(
                 "indirect address `{}`: the project has no {} file",
@@ -319,10 +312,7 @@ impl super::emit::Emitter<'_> {
                 String::new(),
             );
         }
-        let mut before = format!(
-            "    __if[{k}] := INT_TO_DINT({});\n    CASE __if[{k}] OF\n",
-            f.st_path().unwrap_or_default()
-        );
+        let mut before = file_case(k, f);
         let mut after = format!("    CASE __if[{k}] OF\n");
         for &n in &files {
             let code = self.index_in(d, n);
@@ -333,20 +323,17 @@ impl super::emit::Emitter<'_> {
             );
             let _ = writeln!(after, "    {n}: {arr}[__ix[{k}]] := __iv[{k}];");
         }
-        let list = files
-            .iter()
-            .map(|n| n.to_string())
-            .collect::<Vec<_>>()
-            .join(", ");
-        let what = format!(
-            "indirect address `{}`: the file number is not one of the {} files of the project ({list})",
-            d.text,
-            d.addr.ty.letter()
-        );
-        before.push_str("    ELSE\n");
-        before += &self.check(&format!("__if[{k}] = __if[{k}]"), what);
-        before.push_str("    END_CASE;\n");
+        before += &self.no_such_file(d, "indirect address", &files);
         after.push_str("    END_CASE;\n");
         (before, if dest { after } else { String::new() })
     }
+}
+
+/// The start of the CASE over the file number read from `from` into
+/// `__if[k]`.
+fn file_case(k: usize, from: Address) -> String {
+    format!(
+        "    __if[{k}] := INT_TO_DINT({});\n    CASE __if[{k}] OF\n",
+        from.st_path().unwrap_or_default()
+    )
 }
