@@ -46,6 +46,10 @@ const S = {
   forced: new Set(),      // watched paths that are forced
   invalid: new Set(),     // paths the server refused
   plcNs: 0, scans: 0,
+  // The number of the newest snapshot whose values are shown: a reply
+  // about an older one (a read answered after the next scan's update)
+  // is left out.
+  seq: 0,
   symbols: [], types: new Map(), leaves: [],
   charts: [],
   view: 'overview',
@@ -175,7 +179,8 @@ const Watcher = {
     const scheme = location.protocol === 'https:' ? 'wss' : 'ws';
     const ws = new WebSocket(`${scheme}://${location.host}/api/v1/watch?token=${encodeURIComponent(S.token)}`);
     this.ws = ws;
-    ws.onopen = () => { this.retry = 0; this.send(); };
+    // A restarted server numbers its snapshots from 0 again.
+    ws.onopen = () => { this.retry = 0; S.seq = 0; this.send(); };
     ws.onmessage = (ev) => this.message(ev.data);
     ws.onclose = () => {
       if (this.ws !== ws) return;
@@ -203,9 +208,12 @@ const Watcher = {
     }
     S.stats.messages++;
     S.stats.messagePlcNs = m.plc_time_ns;
-    S.plcNs = m.plc_time_ns; S.scans = m.scans;
-    for (const [k, v] of Object.entries(m.values)) S.values.set(k, v);
-    S.forced = new Set(m.forced || []);
+    if (m.seq >= S.seq) {
+      S.seq = m.seq;
+      S.plcNs = m.plc_time_ns; S.scans = m.scans;
+      for (const [k, v] of Object.entries(m.values)) S.values.set(k, v);
+      S.forced = new Set(m.forced || []);
+    }
     Trends.sample(m);
     kick();
   },
@@ -454,11 +462,16 @@ async function refresh() {
   try {
     const f = await api('GET', '/api/v1/forces');
     const forced = new Set(Object.keys(f.forces).map((p) => p.toLowerCase()));
+    let r = { seq: f.seq, values: {} };
     if (paths.length) {
       const q = paths.map((p) => 'path=' + encodeURIComponent(p)).join('&');
-      const r = await api('GET', '/api/v1/read?' + q);
-      for (const [k, v] of Object.entries(r.values)) S.values.set(k, v);
+      r = await api('GET', '/api/v1/read?' + q);
     }
+    // An update of a later scan came while these requests ran (a step
+    // right after the click): it is newer, the replies are dropped.
+    if (f.seq < S.seq || r.seq < S.seq) return;
+    S.seq = r.seq;
+    for (const [k, v] of Object.entries(r.values)) S.values.set(k, v);
     // Forces given under another name of the same location show at the
     // next scan's update.
     S.forced = new Set([...S.forced].filter((p) => forced.has(p.toLowerCase())).concat(paths.filter((p) => forced.has(p.toLowerCase()))));

@@ -208,10 +208,10 @@ pub async fn read(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery) -
             format!("at most {MAX_PATHS} paths per read"),
         );
     }
-    match app.session.read(&paths) {
-        Ok(values) => {
+    match app.session.read_seq(&paths) {
+        Ok((seq, values)) => {
             let map: Map<String, Value> = values.into_iter().map(|(k, v)| (k, json!(v))).collect();
-            axum::Json(json!({ "values": map })).into_response()
+            axum::Json(json!({ "seq": seq, "values": map })).into_response()
         }
         Err(e) => session_error(&e),
     }
@@ -295,13 +295,13 @@ pub async fn forces(Ax(app): Ax<App>, headers: HeaderMap, RawQuery(q): RawQuery)
     if let Err(r) = authorize(&app, &headers, q.as_deref(), Role::Viewer, "list forces") {
         return r.into_response();
     }
-    let map: Map<String, Value> = app
-        .session
-        .forces()
-        .into_iter()
-        .map(|(k, v)| (k, json!(v)))
+    let snap = app.session.snapshot();
+    let map: Map<String, Value> = snap
+        .forces
+        .iter()
+        .map(|(k, v)| (k.clone(), json!(v)))
         .collect();
-    axum::Json(json!({ "forces": map })).into_response()
+    axum::Json(json!({ "seq": snap.seq, "forces": map })).into_response()
 }
 
 fn node_json(n: &Node, session: &Session) -> Value {

@@ -1,6 +1,6 @@
 //! `GET /api/v1/watch`: a WebSocket whose client sends
 //! `{"subscribe": [paths], "period_ms": n}` (again to change it) and gets
-//! `{"plc_time_ns", "scans", "values": {...}}` (and `"forced": [paths]`
+//! `{"plc_time_ns", "scans", "seq", "values": {...}}` (and `"forced": [paths]`
 //! when some watched paths are forced) after every scan
 //! (`period_ms` 0 or absent) or at most once per period of PLC time, and
 //! once at once with the current values.
@@ -67,13 +67,18 @@ fn values(app: &App, places: &[(String, Locator)], snap: &Snapshot) -> String {
         .iter()
         .map(|(n, l)| (n.clone(), json!(l.format(&snap.image))))
         .collect();
-    let mut msg = json!({ "plc_time_ns": snap.plc_time_ns, "scans": snap.scans, "values": map });
+    let mut msg = json!({
+        "plc_time_ns": snap.plc_time_ns,
+        "scans": snap.scans,
+        "seq": snap.seq,
+        "values": map,
+    });
     if !snap.forces.is_empty() {
         let forced: Vec<&str> = places
             .iter()
             .filter(|(_, l)| {
                 l.place(&snap.image)
-                    .is_ok_and(|p| app.session.is_forced(&p))
+                    .is_ok_and(|p| app.session.is_forced_in(snap, &p))
             })
             .map(|(n, _)| n.as_str())
             .collect();

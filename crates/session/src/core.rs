@@ -108,6 +108,8 @@ struct Core {
     steps: Option<(u64, Reply)>,
     plc_time_ns: i64,
     scans: u64,
+    /// Snapshots published so far ([`Snapshot::seq`]).
+    published: u64,
     stats: CycleStats,
     subs: Vec<Subscription>,
     quit: bool,
@@ -139,6 +141,7 @@ struct Core {
 
 impl Core {
     fn publish(&mut self, image: &[u8]) {
+        self.published += 1;
         let snap = Arc::new(Snapshot {
             plc_time_ns: self.plc_time_ns,
             scans: self.scans,
@@ -146,6 +149,7 @@ impl Core {
             stats: self.stats.clone(),
             image: image.to_vec(),
             forces: Arc::clone(&self.forces_shown),
+            seq: self.published,
         });
         match self.shared.snapshot.lock() {
             Ok(mut s) => *s = Arc::clone(&snap),
@@ -655,6 +659,7 @@ fn run(
         steps: None,
         plc_time_ns: 0,
         scans: 0,
+        published: 0,
         stats: CycleStats::default(),
         subs: Vec::new(),
         quit: false,

@@ -103,6 +103,10 @@ pub struct Snapshot {
     pub image: Vec<u8>,
     /// Forced paths with their values, in the order they were set.
     pub forces: Arc<Vec<(String, String)>>,
+    /// The snapshot's number: each publication (after a scan or after
+    /// commands between scans) counts one up from 0 at the start, so a
+    /// client holding values of two replies keeps the newer ones.
+    pub seq: u64,
 }
 
 /// Why a request was refused.
@@ -296,6 +300,7 @@ pub fn run_here(program: Arc<Program>, mut config: Config, parts: Parts, limit: 
             stats: CycleStats::default(),
             image: program.initial_image.clone(),
             forces: Arc::new(Vec::new()),
+            seq: 0,
         })),
     });
     // The sender lives as long as the run, so the loop never takes the
@@ -371,6 +376,7 @@ impl Session {
             stats: CycleStats::default(),
             image: program.initial_image.clone(),
             forces: Arc::new(Vec::new()),
+            seq: 0,
         };
         let shared = Arc::new(Shared {
             snapshot: Mutex::new(Arc::new(empty)),
@@ -426,19 +432,26 @@ impl Session {
     /// (an indexed or indirect address outside its data file in that
     /// snapshot is an error of this read).
     pub fn read(&self, paths: &[String]) -> Result<Vec<(String, String)>, Error> {
+        self.read_seq(paths).map(|(_, values)| values)
+    }
+
+    /// [`Session::read`] with the number of the snapshot the values come
+    /// from ([`Snapshot::seq`]).
+    pub fn read_seq(&self, paths: &[String]) -> Result<(u64, Vec<(String, String)>), Error> {
         let locators = paths
             .iter()
             .map(|p| self.locate(p))
             .collect::<Result<Vec<Locator>, Error>>()?;
         let snap = self.snapshot();
-        paths
+        let values = paths
             .iter()
             .zip(&locators)
             .map(|(p, l)| {
                 let place = l.place(&snap.image).map_err(Error::Path)?;
                 Ok((p.clone(), show::format(&snap.image, &place)))
             })
-            .collect()
+            .collect::<Result<Vec<_>, Error>>()?;
+        Ok((snap.seq, values))
     }
 
     /// An SLC indexed or indirect `path` as the last snapshot has it: its
@@ -581,7 +594,13 @@ impl Session {
     /// Whether the location of `place` is forced (whatever name the force
     /// was given), for views that mark forced values.
     pub fn is_forced(&self, place: &Place) -> bool {
-        self.snapshot().forces.iter().any(|(path, _)| {
+        self.is_forced_in(&self.snapshot(), place)
+    }
+
+    /// Whether `place` is forced in `snap` (an update formats the values
+    /// and the forces of the same snapshot).
+    pub fn is_forced_in(&self, snap: &Snapshot, place: &Place) -> bool {
+        snap.forces.iter().any(|(path, _)| {
             resolve(&self.program, path)
                 .is_ok_and(|f| f.offset == place.offset && f.bit == place.bit)
         })

@@ -174,13 +174,33 @@ def crane(d, base, token, shots):
     color = d.execute_script("return getComputedStyle(document.querySelector(\"#wl-rows tr[data-path='Ctrl.l4'] td.value\")).color")
     check("forced values are styled apart", color == "rgb(179, 38, 30)", color)
     shot(d, os.path.join(shots, "watch.png"))
+    # The page reads the values again after the click. That read is made
+    # to race a step on purpose: answered by the server before the step,
+    # delivered to the page only after the step's WebSocket update. The
+    # page must keep the update (the newer snapshot), not the read.
+    d.execute_script("""
+      const real = window.fetch;
+      window.automatHmiTest = { readServed: false };
+      window.fetch = async (url, opts) => {
+        const r = await real(url, opts);
+        if (String(url).includes('/api/v1/read')) {
+          window.fetch = real;
+          window.automatHmiTest.readServed = true;
+          await new Promise((ok) => setTimeout(ok, 1000));
+        }
+        return r;
+      };""")
     d.find_element(By.CSS_SELECTOR, "button[aria-label='Unforce Ctrl.l4']").click()
     # The click's request is asynchronous: step only once the server has
-    # released the force (a step before it would keep TRUE one more scan).
+    # released the force (a step before it would keep TRUE one more scan)
+    # and has answered the page's read.
     wait(d, "released", lambda: "Ctrl.l4" not in api.forces())
+    wait(d, "read answered", lambda: d.execute_script("return window.automatHmiTest.readServed"))
     api.step(1)
+    time.sleep(1.5)
     v = wait(d, "unforced", lambda: row_value(d, "Ctrl.l4") == ["FALSE", False])
-    check("unforce releases it (the plant gives FALSE again)", v, row_value(d, "Ctrl.l4"))
+    check("unforce releases it (the plant gives FALSE again), "
+          "also when the page's read is answered after the next update", v, row_value(d, "Ctrl.l4"))
     lists = d.execute_script("return localStorage.getItem('automat.hmi.watch.crane')")
     check("the watch list is kept per project in the browser",
           json.loads(lists)["lists"]["Watch 1"][:2] == ["Ctrl.GS1.t", "Ctrl.l4"], lists)

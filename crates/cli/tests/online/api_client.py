@@ -125,7 +125,7 @@ def exact(base, token):
     # Force: a forced input beats the plant, exactly from the next scan.
     r = eng.post("/api/v1/force", {"path": "Ctrl.l1", "value": "FALSE"})
     check("force l1 FALSE", r.status_code == 200, r.text)
-    check("forces listed", eng.get("/api/v1/forces").json() == {"forces": {"Ctrl.l1": "FALSE"}})
+    check("forces listed", eng.get("/api/v1/forces").json()["forces"] == {"Ctrl.l1": "FALSE"})
     eng.step(3)
     check("forced l1 holds against the plant", eng.read("Ctrl.l1") == {"Ctrl.l1": "FALSE"})
     # A press of Pornire (forced: the plant writes the button every scan)
@@ -144,7 +144,7 @@ def exact(base, token):
     # l1 was off, so no cycle starts: a new cycle needs a new press.
     check("released at the next scan", v == {"Ctrl.l1": "TRUE", "Ctrl.GS2.x": "FALSE", "Ctrl.M2S": "FALSE"}, v)
     r = eng.post("/api/v1/unforce", {"all": True})
-    check("unforce all", r.status_code == 200 and eng.get("/api/v1/forces").json() == {"forces": {}}, r.text)
+    check("unforce all", r.status_code == 200 and eng.get("/api/v1/forces").json()["forces"] == {}, r.text)
     expect("unforce a path not forced: 409", eng.post("/api/v1/unforce", {"path": "Ctrl.l1"}), 409)
 
     # Write once: the program's next assignment wins.
@@ -193,8 +193,19 @@ def exact(base, token):
               first["values"] == {"Ctrl.GS1.x": "TRUE", "Ctrl.l1": "TRUE"}, first)
         t0 = first["plc_time_ns"]
         eng.step(3)
-        got = [json.loads(ws.recv(timeout=10))["plc_time_ns"] for _ in range(3)]
+        msgs = [json.loads(ws.recv(timeout=10)) for _ in range(3)]
+        got = [m["plc_time_ns"] for m in msgs]
         check("watch: one message per scan", got == [t0 + 10_000_000 * k for k in (1, 2, 3)], (t0, got))
+        # Every snapshot has a number, the same in a read, a force list and
+        # the watch: a page holding two replies keeps the newer values.
+        seqs = [m["seq"] for m in msgs]
+        r = eng.get("/api/v1/read", path="Ctrl.l1").json()
+        check("watch and read: snapshots numbered in order, a read of the last one",
+              first["seq"] < seqs[0] < seqs[1] < seqs[2] == r["seq"]
+              == eng.get("/api/v1/forces").json()["seq"], (first["seq"], seqs, r))
+        eng.post("/api/v1/write", {"path": "Ctrl.M1S", "value": "FALSE"})
+        check("a write between scans is a newer snapshot",
+              eng.get("/api/v1/read", path="Ctrl.l1").json()["seq"] > seqs[2])
         ws.send(json.dumps({"subscribe": ["Ctrl.l2"], "period_ms": 50}))
         again = json.loads(ws.recv(timeout=10))
         check("watch: a new subscription replaces the old", list(again["values"]) == ["Ctrl.l2"], again)
