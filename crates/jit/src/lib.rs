@@ -27,6 +27,7 @@ mod compile;
 mod emit;
 mod instances;
 mod locals;
+mod loops;
 mod promote;
 mod rt;
 mod select;

@@ -409,6 +409,8 @@ impl Tx<'_, '_> {
         } else {
             crate::select::diamonds(code, &lead, &crate::locals::slots(self.f, &lead))
         };
+        let slots: Vec<(u32, MemTy)> = self.promoted.iter().map(|(o, (t, _))| (*o, *t)).collect();
+        let known = crate::loops::entry_ranges(self.f, &lead, &slots, self.extent);
         let mut blocks = Vec::with_capacity(code.len());
         for &is in lead.iter().take(code.len()) {
             blocks.push(is.then(|| self.b.create_block()));
@@ -431,6 +433,7 @@ impl Tx<'_, '_> {
                 self.poll(start)?;
             }
             self.charge(start, end)?;
+            self.seed(&known, start);
             for pc in start..end {
                 let inst = code
                     .get(pc)
@@ -556,7 +559,12 @@ impl Tx<'_, '_> {
                 let t = block_at(then).ok_or_else(|| missing(then))?;
                 let e = block_at(els).ok_or_else(|| missing(els))?;
                 let no: &[BlockArg] = &[];
-                self.b.ins().brif(c, t, no, e, no);
+                // A condition the facts decide (`loops.rs`): a jump.
+                match self.facts.get(&cond) {
+                    Some(Fact::Range(1, 1)) => self.b.ins().jump(t, no),
+                    Some(Fact::Range(0, 0)) => self.b.ins().jump(e, no),
+                    _ => self.b.ins().brif(c, t, no, e, no),
+                };
             }
             Inst::Ret if self.ret_to.is_some() => {
                 if let Some(b) = self.ret_to {
@@ -862,9 +870,13 @@ impl Tx<'_, '_> {
                 self.emit_plain(inst)?;
                 if let Some(&(t, var)) = self.promoted.get(&addr.offset) {
                     if t == ty {
-                        // What a load of the stored bytes gives back.
+                        // What a load of the stored bytes gives back (the
+                        // value itself when its range fits the type).
                         let v = self.get(src)?;
-                        let v = self.wrap(v, ty);
+                        let v = match self.facts.get(&src) {
+                            Some(&Fact::Range(a, b)) if crate::loops::fits((a, b), ty) => v,
+                            _ => self.wrap(v, ty),
+                        };
                         self.b.def_var(var, v);
                     }
                 }
@@ -896,6 +908,12 @@ impl Tx<'_, '_> {
             // checked again, as `a[i].x := a[i].y` does): nothing can fail.
             Inst::Check { val, lo, hi, .. } if matches!(self.facts.get(&val), Some(&Fact::Range(a, b)) if lo <= a && b <= hi) =>
                 {}
+            // A wrap of a value already in the type's range (`loops.rs`).
+            Inst::Wrap { dst, src, ty } if matches!(self.facts.get(&src), Some(&Fact::Range(a, b)) if crate::loops::fits((a, b), ty)) =>
+            {
+                let v = self.get(src)?;
+                self.set(dst, v)?;
+            }
             _ => self.emit_plain(inst)?,
         }
         if let Inst::Check { val, lo, hi, .. } = *inst {
@@ -908,7 +926,7 @@ impl Tx<'_, '_> {
             let v = self.get(val)?;
             self.ranges.insert(v, (lo, hi));
         } else if let Some(d) = promote::writes(inst) {
-            let new = promote::derive(inst, &self.facts, self.extent);
+            let new = crate::loops::derive(inst, &self.facts, self.extent);
             self.facts.remove(&d);
             if let Some((r, f)) = new {
                 self.facts.insert(r, f);
