@@ -93,8 +93,12 @@ pub fn derive(inst: &Inst, facts: &HashMap<Reg, Fact>, extent: u64) -> Option<(R
 
 /// `x cmp y` when every pair of values gives the same answer.
 fn decide(cmp: Cmp, x: Span, y: Span) -> Option<bool> {
-    let lt = (x.1 < y.0).then_some(true).or((x.0 >= y.1).then_some(false));
-    let le = (x.1 <= y.0).then_some(true).or((x.0 > y.1).then_some(false));
+    let lt = (x.1 < y.0)
+        .then_some(true)
+        .or((x.0 >= y.1).then_some(false));
+    let le = (x.1 <= y.0)
+        .then_some(true)
+        .or((x.0 > y.1).then_some(false));
     let eq = if x.0 == x.1 && y.0 == y.1 && x.0 == y.0 {
         Some(true)
     } else if x.1 < y.0 || y.1 < x.0 {
@@ -280,8 +284,10 @@ impl Analysis<'_> {
     /// slot ranges on each edge (an edge no value can take is left out).
     fn block(&self, start: usize, end: usize, state: State) -> Vec<(usize, State)> {
         let (mut state, regs) = state;
-        let mut facts: HashMap<Reg, Fact> =
-            regs.iter().map(|(&r, &(a, b))| (r, Fact::Range(a, b))).collect();
+        let mut facts: HashMap<Reg, Fact> = regs
+            .iter()
+            .map(|(&r, &(a, b))| (r, Fact::Range(a, b)))
+            .collect();
         // Registers holding the current value of a slot.
         let mut holds: HashMap<Reg, usize> = HashMap::new();
         // Registers holding a comparison of two registers, still valid.
@@ -678,7 +684,13 @@ mod tests {
         let mut facts = HashMap::new();
         facts.insert(1, Fact::Range(0, 300));
         let w = |ty| Inst::Wrap { dst: 2, src: 1, ty };
-        assert_eq!(derive(&w(MemTy::I32), &facts, 0), Some((2, Fact::Range(0, 300))));
-        assert_eq!(derive(&w(MemTy::U8), &facts, 0), Some((2, Fact::Range(0, 255))));
+        assert_eq!(
+            derive(&w(MemTy::I32), &facts, 0),
+            Some((2, Fact::Range(0, 300)))
+        );
+        assert_eq!(
+            derive(&w(MemTy::U8), &facts, 0),
+            Some((2, Fact::Range(0, 255)))
+        );
     }
 }
