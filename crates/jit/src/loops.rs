@@ -34,6 +34,10 @@ pub type Span = (i64, i64);
 const MAX_BLOCKS: usize = 4096;
 /// Passes over the blocks before giving up (widening ends it far sooner).
 const MAX_PASSES: usize = 12;
+/// At most this many registers are carried between blocks (the ones
+/// lowering reads in several blocks, as a FOR's end, step and limit), so
+/// the work per block stays bounded.
+const MAX_CARRIED: usize = 64;
 
 /// The values a load of `ty` can give (None: not an integer).
 pub fn type_span(ty: MemTy) -> Option<Span> {
@@ -188,10 +192,15 @@ pub fn entry_ranges(
     let top: Vec<Span> = slots.iter().map(|s| s.2).collect();
     let mut at: HashMap<usize, State> = HashMap::new();
     at.insert(0, (top, BTreeMap::new()));
+    // Registers read in several blocks; a block-local one is written in
+    // its block before it is read, nothing to carry.
+    let local = crate::locals::slots(f, lead);
+    let carried: Vec<bool> = local.iter().map(|s| s.is_none()).collect();
     let a = Analysis {
         f,
         slots: &slots,
         extent,
+        carried,
     };
     let mut settled = false;
     for _ in 0..MAX_PASSES {
@@ -268,6 +277,8 @@ struct Analysis<'a> {
     f: &'a Func,
     slots: &'a [(u32, MemTy, Span)],
     extent: u64,
+    /// By register: whether its range is carried to other blocks.
+    carried: Vec<bool>,
 }
 
 impl Analysis<'_> {
@@ -417,13 +428,17 @@ impl Analysis<'_> {
                 }
             }
         }
-        let regs: BTreeMap<Reg, Span> = facts
+        let mut regs: BTreeMap<Reg, Span> = facts
             .iter()
+            .filter(|(r, _)| self.carried.get(**r as usize).copied().unwrap_or(false))
             .filter_map(|(&r, f)| match *f {
                 Fact::Range(a, b) => Some((r, (a, b))),
                 Fact::This(..) => None,
             })
             .collect();
+        while regs.len() > MAX_CARRIED {
+            regs.pop_last();
+        }
         let state = (state, regs);
         let last = end.checked_sub(1).and_then(|pc| self.f.code.get(pc));
         match last {
