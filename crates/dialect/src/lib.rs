@@ -392,7 +392,7 @@ pub fn check_sources(
     if codesys {
         // A program's variables and actions used from other POUs: hidden
         // globals first (its VAR_STAT too), before the rewrites below.
-        program_access::rewrite(&mut units, &is_user, interner);
+        program_access::rewrite(&mut units, &is_user, interner, &mut diags);
         // `__NEW` / `__DELETE`: calls of the library's allocator.
         let heap_lib = sources
             .files()
