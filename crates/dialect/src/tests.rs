@@ -207,3 +207,11 @@ fn program_access_moves_only_what_is_reached() {
     );
     assert_eq!(globals, ["Main.count", "Main.calls"]);
 }
+
+/// `__ISVALIDREF` beside real references: the reference desugaring turns
+/// the right use into `r <> NULL` and leaves the misuses to the checker.
+#[test]
+fn isvalidref_misuse_beside_a_reference() {
+    let text = "PROGRAM Main\nVAR x : INT; r : REFERENCE TO INT; ok : BOOL; END_VAR\n    r REF= x;\n    ok := __ISVALIDREF(r);\n    ok := __ISVALIDREF(x);\n    ok := __ISVALIDREF(r, r);\nEND_PROGRAM\n";
+    assert_eq!(codes(text, Dialect::Codesys), [Code::E163, Code::E163]);
+}
