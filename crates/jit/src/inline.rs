@@ -234,11 +234,9 @@ fn exact_slots(g: &Func) -> Vec<(u32, MemTy)> {
     for inst in &g.code {
         match *inst {
             Inst::Load { ty, addr, .. } | Inst::Store { ty, addr, .. }
-                if addr.base == Base::This =>
+                if addr.base == Base::This && !out.contains(&(addr.offset, ty)) =>
             {
-                if !out.contains(&(addr.offset, ty)) {
-                    out.push((addr.offset, ty));
-                }
+                out.push((addr.offset, ty))
             }
             Inst::LoadBit { addr, .. } | Inst::StoreBit { addr, .. } if addr.base == Base::This => {
                 spoiled.push((addr.offset, 1))
