@@ -220,7 +220,7 @@ fn lower_as(
     let mut instances = instances;
     for pi in instances.iter_mut().filter(|pi| !pi.conns.is_empty()) {
         pi.func = funcs.len() as u32;
-        funcs.push(gen::connect::program(&mut cx, pi.pou, &pi.name, &pi.conns));
+        funcs.push(gen::connect::program(&mut cx, pi.pou, &pi.conns));
     }
     if cx.diags.iter().any(Diagnostic::is_error) {
         return Err(cx.diags);

@@ -16,8 +16,15 @@ use automat_syntax::ast::{Arg, ArgDir, Expr, ExprKind};
 
 /// The code running program `pou` on its instance (`This`) between the
 /// stores of `conns` (checked by the configuration's checker).
-pub fn program(cx: &mut Cx, pou: PouId, inst: &str, conns: &[Arg]) -> Func {
-    let mut g = Gen::new(cx, pou, &format!("__CONNECT_{inst}"), None);
+/// The function is named like the program: it is that program's code as
+/// this instance runs it (views find a task's program by that name; the
+/// program's own function comes first among the functions so named).
+pub fn program(cx: &mut Cx, pou: PouId, conns: &[Arg]) -> Func {
+    let name = match cx.model.pou(pou) {
+        Some(p) => cx.interner.name(p.name).to_string(),
+        None => "?".to_string(),
+    };
+    let mut g = Gen::new(cx, pou, &name, None);
     // A failed connection has its error in `cx.diags` already.
     let _ = g.connections(pou, conns);
     super::peep::tidy(&mut g.f);
