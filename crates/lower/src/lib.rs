@@ -215,6 +215,13 @@ fn lower_as(
         funcs.push(gen::pou(&mut cx, PouId(i as u32)));
     }
     gen::lean::finish(&mut funcs, &cx.hidden);
+    // A connected instance runs the code that stores its connections
+    // around the program (after `lean`, which knows only POUs).
+    let mut instances = instances;
+    for pi in instances.iter_mut().filter(|pi| !pi.conns.is_empty()) {
+        pi.func = funcs.len() as u32;
+        funcs.push(gen::connect::program(&mut cx, pi.pou, &pi.conns));
+    }
     if cx.diags.iter().any(Diagnostic::is_error) {
         return Err(cx.diags);
     }

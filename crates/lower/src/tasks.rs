@@ -6,7 +6,7 @@ use crate::LowerOptions;
 use automat_base::{Code, Diagnostic, Span};
 use automat_ir::{ProgramInstance, TaskDef};
 use automat_sema::PouId;
-use automat_syntax::ast::{PouKind, Retain};
+use automat_syntax::ast::{Arg, PouKind, Retain};
 
 pub struct Inst {
     pub name: String,
@@ -14,6 +14,11 @@ pub struct Inst {
     /// (config, resource, task) indexes; `None`: the implicit task.
     pub task: Option<(usize, usize, u32)>,
     pub retain: Retain,
+    /// The configuration's connections of its inputs and outputs.
+    pub conns: Vec<Arg>,
+    /// The function the task runs: the program's, or the code storing the
+    /// connections around it (`gen::connect`).
+    pub func: u32,
 }
 
 /// The program instances; `every_program`: without a CONFIGURATION, one of
@@ -35,6 +40,8 @@ pub fn instances(
                         pou: p.pou,
                         task: p.task.map(|t| (ci, ri, t)),
                         retain: p.retain,
+                        conns: p.conns.clone(),
+                        func: p.pou.0,
                     });
                 }
             }
@@ -55,6 +62,8 @@ pub fn instances(
                 pou: PouId(*i as u32),
                 task: None,
                 retain: Retain::Unspecified,
+                conns: Vec::new(),
+                func: *i as u32,
             })
             .collect());
     }
@@ -100,13 +109,15 @@ pub fn instances(
         pou: PouId(chosen.0 as u32),
         task: None,
         retain: Retain::Unspecified,
+        conns: Vec::new(),
+        func: chosen.0 as u32,
     }])
 }
 
 pub fn task_defs(cx: &Cx, insts: &[Inst], offsets: &[u32]) -> Vec<TaskDef> {
     let pi = |i: &Inst, off: u32| ProgramInstance {
         name: i.name.clone(),
-        func: i.pou.0,
+        func: i.func,
         instance_offset: off,
     };
     let mut tasks: Vec<TaskDef> = Vec::new();

@@ -233,6 +233,7 @@ fn programs(ck: &mut Checker, res: &ast::Resource, tasks: &[Task]) -> Vec<Progra
             pou: pou_id,
             task,
             retain: pc.retain,
+            conns: pc.conns.clone(),
         });
     }
     out

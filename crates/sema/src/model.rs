@@ -170,6 +170,9 @@ pub struct ProgramInstance {
     /// Index into the resource's tasks.
     pub task: Option<u32>,
     pub retain: Retain,
+    /// The checked connections `(input := value, output => place)`, in
+    /// the configuration's scope: run around each call of the program.
+    pub conns: Vec<ast::Arg>,
 }
 
 #[derive(Clone, Debug, PartialEq)]

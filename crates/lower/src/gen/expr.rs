@@ -179,7 +179,7 @@ impl Gen<'_, '_> {
             ExprKind::Name(id) => {
                 let model = self.cx.model;
                 let pou = model.pou(self.pou).ok_or(Failed)?;
-                if let Some(idx) = pou.vars.index(id.sym) {
+                if let Some(idx) = pou.vars.index(id.sym).filter(|_| !self.outside) {
                     return self.var_lv(idx, e.span);
                 }
                 // `__SELF`: the current function block instance (the

@@ -6,6 +6,7 @@
 //! and calls ([`call`], [`stdfn`]) build on that.
 
 mod call;
+pub mod connect;
 mod en;
 mod expr;
 mod forloop;
@@ -100,6 +101,9 @@ pub struct Gen<'c, 'a> {
     /// Jumps to labels not placed yet (`StmtKind::Goto` forward), patched
     /// when the label is reached.
     gotos: Vec<(automat_base::Symbol, u32, Span)>,
+    /// Names are read in the configuration's scope (a connection's value):
+    /// globals only, not the POU's variables (`connect.rs`).
+    outside: bool,
 }
 
 struct LoopCx {
@@ -123,6 +127,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             label: std::cell::Cell::new(u32::MAX),
             labels: rustc_hash::FxHashMap::default(),
             gotos: Vec::new(),
+            outside: false,
         }
     }
 
