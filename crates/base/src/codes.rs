@@ -281,6 +281,10 @@ codes! {
         "Festo FST dialect: an STL file is named P<n>.stl (n = 0-63) or B<n>.stl (n = 0-99) and a number is used once; P0 must exist; SET/RESET Pn and CMP n need that program or module; a module has no steps and does not call itself; CFM manufacturer modules are not available.";
     E189 => "bit and word mixed",
         "Festo FST dialect: an operation mixes a single-bit operand with a word, a condition is a word (compare it: `(CW1 = V5)`), N is applied to a word (use INV), or an accumulator operation (SHL, INV, ...) follows a bit.";
+    E190 => "function block instance declared CONSTANT",
+        "A function block instance (or an array of them) cannot be declared in a CONSTANT block (VAR CONSTANT, VAR_GLOBAL CONSTANT, VAR_EXTERNAL CONSTANT, VAR_INPUT CONSTANT): calling it changes its state. Declare it in a block without CONSTANT.";
+    E191 => "embedded C code",
+        "`{{ ... }}` is MatIEC's embedded C code (Beremiz and OpenPLC write it), copied by that compiler into its C output: automat compiles Structured Text only and cannot run it. Write what it does in Structured Text (a function block of your own), or leave the POU out.";
     E200 => "unknown base or interface",
         "`EXTENDS` names no function block or class (a class extends a class, a function block a function block), or `IMPLEMENTS`/an interface's `EXTENDS` names no interface.";
     E201 => "FINAL class or method overridden",

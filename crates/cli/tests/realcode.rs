@@ -36,8 +36,12 @@ tests/realcode/openplc: 1 file, 1 clean; 1 POU, 1 clean; examples: 1 passed, 0 f
 total: 10 files, 10 clean; 18 POUs, 18 clean; examples: 9 passed, 0 failed
 ";
 
+const CODESYS_SOURCES: [&str; 2] = ["tests/realcode/codesys-v23", "tests/realcode/oscat-style"];
+
 const CODESYS_REPORT: &str = "\
 tests/realcode/codesys-v23: 5 files, 5 clean; 9 POUs, 9 clean; examples: 2 passed, 0 failed
+tests/realcode/oscat-style: 2 files, 2 clean; 4 POUs, 4 clean; examples: 1 passed, 0 failed
+total: 7 files, 7 clean; 13 POUs, 13 clean; examples: 3 passed, 0 failed
 ";
 
 #[test]
@@ -57,14 +61,9 @@ fn the_iec_sources_check_and_run_as_pinned_on_both_engines() {
 #[test]
 fn the_codesys_export_checks_and_runs_as_pinned_with_its_dialect() {
     for engine in ["jit", "interp"] {
-        let (code, out, err) = automat(&[
-            "corpus",
-            "--lib",
-            "codesys",
-            "--engine",
-            engine,
-            "tests/realcode/codesys-v23",
-        ]);
+        let mut args = vec!["corpus", "--lib", "codesys", "--engine", engine];
+        args.extend(CODESYS_SOURCES);
+        let (code, out, err) = automat(&args);
         assert_eq!(
             (code, out.as_str(), err.as_str()),
             (Some(0), CODESYS_REPORT, ""),
@@ -79,6 +78,16 @@ fn the_codesys_export_checks_and_runs_as_pinned_with_its_dialect() {
     assert!(
         out.starts_with(
             "tests/realcode/codesys-v23: 5 files, 2 clean; 9 POUs, 2 clean; examples: 2 passed"
+        ),
+        "{out}"
+    );
+    // The OSCAT-style blocks need the dialect's clock, bit-string index and
+    // `END_IF` without `;`; only the example's program checks without it.
+    let (code, out, _) = automat(&["corpus", "tests/realcode/oscat-style"]);
+    assert_eq!(code, Some(0));
+    assert!(
+        out.starts_with(
+            "tests/realcode/oscat-style: 2 files, 1 clean; 4 POUs, 1 clean; examples: 1 passed"
         ),
         "{out}"
     );

@@ -35,6 +35,7 @@
 mod boolact;
 mod build;
 mod children;
+mod clock;
 mod codesys;
 mod empty;
 mod fst;
@@ -404,6 +405,8 @@ pub fn check_sources(
         codesys::static_vars(&mut units, &is_user, interner, &mut diags);
         // Globals of global variable lists need no VAR_EXTERNAL.
         codesys::implicit_externals(&mut units, &is_user);
+        // `TIME()`: CODESYS's clock, the scan's PLC time.
+        clock::rewrite(&mut units, &is_user, interner);
     }
     if isagraf || pl7 {
         sections::synthesize(&mut units, &marks, has_children, interner, &mut diags);

@@ -129,6 +129,8 @@ fn check(name: &str, what: &str, text: &str) -> Duration {
                     // ACTION after something else than a function block.
                     | Code::E160
                     | Code::E161
+                    // MatIEC's embedded C code `{{ ... }}`.
+                    | Code::E191
             ) || is_il_code(d.code)
                 || is_chart_code(d.code),
             "{name} ({what}): unexpected code {:?}",

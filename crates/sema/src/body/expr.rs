@@ -700,10 +700,26 @@ impl<'m> Checker<'m> {
             Ty::Of(id) => self.model.types.elem(id).is_some_and(|e| e.is_int()),
             _ => false,
         };
+        // CODESYS indexes with a bit string too (OSCAT's `X[set0, 1]`, a
+        // BYTE of selector bits): its unsigned value, as BYTE_TO_UDINT.
+        let bits = match t.ty {
+            Ty::Of(id) => self
+                .model
+                .types
+                .elem(id)
+                .is_some_and(|e| e.is_bit() && e != Elem::Bool),
+            _ => false,
+        };
+        if bits && self.model.codesys {
+            return Some(t);
+        }
         if !is_int {
             self.err(Code::E030, ix.span, |c| {
                 format!("{what} index must be an integer, found {}", c.tyname(t.ty))
             });
+            if bits {
+                self.note_codesys("CODESYS indexes with BYTE, WORD, DWORD and LWORD values");
+            }
             return None;
         }
         Some(t)

@@ -5,7 +5,7 @@ use super::fold::SlotInfo;
 use super::typeres::SpecCtx;
 use super::{Builder, Owner, SlotState, MAX_DEPTH};
 use crate::model::{Section, Var};
-use crate::types::TypeId;
+use crate::types::{TypeId, TypeKind};
 use crate::value::Init;
 use automat_base::{Code, Diagnostic};
 use automat_syntax::ast::VarKind;
@@ -88,6 +88,13 @@ impl<'a> Builder<'a> {
                 ));
             }
         }
+        if block.constant && first == i && self.holds_instance(ty) {
+            self.emit(Diagnostic::error(
+                Code::E190,
+                decl.ty.span(),
+                "a function block instance cannot be declared CONSTANT: calling it changes its state",
+            ));
+        }
         let var = Var {
             name: name.sym,
             span: name.span,
@@ -109,6 +116,22 @@ impl<'a> Builder<'a> {
             *v = Some(var);
         }
         out
+    }
+
+    /// Whether a value of `ty` is a function block instance, or an array
+    /// of them (IEC 61131-3: an instance is never CONSTANT).
+    fn holds_instance(&self, ty: TypeId) -> bool {
+        let mut t = ty;
+        // An array's element type is never an array: one step suffices,
+        // the bound only keeps the walk finite on any table.
+        for _ in 0..4 {
+            match self.types.get(t) {
+                TypeKind::Fb { .. } => return true,
+                TypeKind::Array { elem, .. } => t = *elem,
+                _ => return false,
+            }
+        }
+        false
     }
 
     fn set_slot(&mut self, s: usize, i: u32, state: SlotState) {

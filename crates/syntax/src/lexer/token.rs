@@ -249,8 +249,11 @@ impl Kw {
     }
 
     /// Words that are keywords only in one place (configurations, `POINTER
-    /// TO`, the SFC elements `STEP`, `TRANSITION`, `ACTION`) and are common variable names elsewhere: where a name is expected
-    /// they are accepted as identifiers.
+    /// TO`, the SFC elements `STEP`, `TRANSITION`, `ACTION`, the edge
+    /// qualifiers `R_EDGE` / `F_EDGE` after an input's type) and are common
+    /// variable names elsewhere (OSCAT's `MANUAL_1` keeps a `r_edge`, as
+    /// CODESYS allows): where a name is expected they are accepted as
+    /// identifiers.
     pub fn is_contextual(self) -> bool {
         matches!(
             self,
@@ -263,6 +266,8 @@ impl Kw {
                 | Kw::Step
                 | Kw::Transition
                 | Kw::Action
+                | Kw::REdge
+                | Kw::FEdge
         )
     }
 

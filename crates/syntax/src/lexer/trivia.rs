@@ -87,6 +87,23 @@ impl Lexer<'_> {
     fn pragma(&mut self) {
         let start = self.pos;
         let rest = &self.b[start..];
+        if rest.starts_with(b"{{") {
+            // MatIEC's (Beremiz, OpenPLC) embedded C code, copied into its C
+            // output: `{{ ... }}` up to the first `}}`. Skipping it would
+            // drop what the POU does, so it is an error; the text after it
+            // is read as usual.
+            let close = rest
+                .get(2..)
+                .and_then(|r| r.windows(2).position(|w| w == b"}}"));
+            self.pos = close.map_or(self.b.len(), |i| start + 2 + i + 2);
+            self.error(
+                Code::E191,
+                start,
+                start + 2,
+                "embedded C code `{{ ... }}` (MatIEC, Beremiz, OpenPLC) cannot run in automat: write what it does in Structured Text".to_string(),
+            );
+            return;
+        }
         match rest.iter().position(|&c| c == b'}') {
             Some(i) => {
                 self.pos = start + i + 1;
