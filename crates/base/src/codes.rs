@@ -241,6 +241,10 @@ codes! {
         "CODESYS dialect: a V2.3 text export writes a POU's actions after it (`ACTION name: ... END_ACTION`). automat reads those of a FUNCTION_BLOCK as methods without parameters (`name();` in its body, `inst.name();` outside), those of a PROGRAM or FUNCTION in place of their calls `name();` in its body, and those of a PROGRAM also from other POUs as `Program.name();`; such an action cannot RETURN (it would leave the whole POU: use IF). An action before any POU, or outside the CODESYS dialect, is this error too.";
     E162 => "misused __NEW or __DELETE",
         "CODESYS dialect: `__NEW(T)` and `__NEW(T, n)` take a type (and a count) and return a `POINTER TO T` into the heap, 0 when it is full; `__DELETE(p)` is a statement of its own that frees what `p` points to and sets `p` to 0.";
+    E163 => "misused __ISVALIDREF",
+        "CODESYS dialect: `__ISVALIDREF(r)` takes one variable declared `REFERENCE TO T` (a variable, member or element) and tells whether it is bound (`r REF= x;`). A pointer or `REF_TO` is tested with `p <> 0` or `p <> NULL` instead; without `--lib codesys` there are no references and no `__ISVALIDREF`.";
+    E164 => "program parameter reached from other POUs connected in a configuration",
+        "CODESYS dialect: a PROGRAM variable another POU names (`Main.count`) or an action called from another POU uses (`Main.Reset();`) is one hidden global `Main.count`, shared by every POU that names it; a configuration's `PROGRAM inst WITH t : Main(count := g);` cannot connect it as the instance's parameter. Give it its value in a POU (`Main.count := g;`), or connect an input no other POU names (those stay the instance's own).";
     E170 => "malformed PLCopen XML",
         "A `.xml` source is not well-formed XML, or its root element is not a PLCopen TC6 `project` (schema 2.01 or 2.0). The message gives the XML parser's reason; the location is where it stopped.";
     E171 => "unsupported PLCopen element",

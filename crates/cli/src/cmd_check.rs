@@ -94,7 +94,7 @@ pub fn run(args: &CheckArgs) -> Outcome {
         Ok(i) => i,
         Err(o) => return o,
     };
-    let dialects = match automat_dialect::parse_names(&inputs.libraries) {
+    let libraries = match automat_dialect::parse_libraries(&inputs.libraries) {
         Ok(d) => d,
         Err(e) => {
             eprintln!("error: --lib: {e}");
@@ -108,7 +108,8 @@ pub fn run(args: &CheckArgs) -> Outcome {
             return Outcome::BadInput;
         }
     };
-    automat_dialect::add_libraries(&mut map, &dialects);
+    automat_dialect::add_libraries_to(&mut map, &libraries);
+    let dialects = libraries.dialects;
     let mut interner = Interner::new();
     let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &dialects);
     // A clean program is lowered too, so check refuses what run would

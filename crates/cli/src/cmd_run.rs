@@ -214,7 +214,7 @@ pub(crate) fn split_trace(values: &[String]) -> Vec<String> {
 
 /// Parses, checks and lowers the project; diagnostics are printed to stderr.
 pub(crate) fn compile(args: &RunArgs) -> Result<Program, Outcome> {
-    let dialects = automat_dialect::parse_names(&args.libs).map_err(|e| {
+    let libraries = automat_dialect::parse_libraries(&args.libs).map_err(|e| {
         eprintln!("error: --lib: {e}");
         Outcome::BadInput
     })?;
@@ -224,7 +224,8 @@ pub(crate) fn compile(args: &RunArgs) -> Result<Program, Outcome> {
             eprintln!("error: {e}");
             Outcome::BadInput
         })?;
-    automat_dialect::add_libraries(&mut map, &dialects);
+    automat_dialect::add_libraries_to(&mut map, &libraries);
+    let dialects = libraries.dialects;
     let mut interner = Interner::new();
     let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &dialects);
     if !analysis.diagnostics.is_empty() {

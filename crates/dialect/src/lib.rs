@@ -40,6 +40,7 @@ mod codesys;
 mod empty;
 mod fst;
 mod heap;
+mod heap_size;
 mod pl7;
 mod pragma;
 mod program_access;
@@ -149,11 +150,67 @@ pub fn is_export_file(name: &str) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("exp"))
 }
 
-/// Parses a list of dialect names (`--lib a --lib b`, `libraries = [...]`).
-pub fn parse_names<S: AsRef<str>>(names: &[S]) -> Result<Vec<Dialect>, String> {
-    let mut out = Vec::new();
+pub use heap_size::{parse_heap_size, DEFAULT_HEAP_BYTES};
+
+/// The dialects a project uses, with their settings.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Libraries {
+    pub dialects: Vec<Dialect>,
+    /// The CODESYS heap's size in bytes (`codesys:heap=256KiB`).
+    pub heap_bytes: u32,
+}
+
+/// Parses a list of dialect names (`--lib a --lib b`, `libraries = [...]`),
+/// each with its settings after a `:` (`codesys:heap=256KiB`, the only
+/// one so far).
+pub fn parse_libraries<S: AsRef<str>>(names: &[S]) -> Result<Libraries, String> {
+    let mut heap_bytes = DEFAULT_HEAP_BYTES;
+    let mut plain = Vec::with_capacity(names.len());
     for n in names {
         let n = n.as_ref();
+        let Some((name, settings)) = n.split_once(':') else {
+            plain.push(n);
+            continue;
+        };
+        if Dialect::from_name(name) != Some(Dialect::Codesys) {
+            match Dialect::from_name(name) {
+                Some(d) => return Err(format!("library `{}` has no settings (`{n}`)", d.name())),
+                None => {
+                    plain.push(name);
+                    continue;
+                }
+            }
+        }
+        for setting in settings.split(',') {
+            match setting.split_once('=') {
+                Some((key, value)) if key.trim().eq_ignore_ascii_case("heap") => {
+                    heap_bytes = parse_heap_size(value)?;
+                }
+                _ => {
+                    return Err(format!(
+                        "unknown setting `{setting}` of library `codesys` (known: `heap=SIZE`, as `codesys:heap=256KiB`)"
+                    ))
+                }
+            }
+        }
+        plain.push(name);
+    }
+    Ok(Libraries {
+        dialects: parse_plain_names(&plain)?,
+        heap_bytes,
+    })
+}
+
+/// Parses a list of dialect names (`--lib a --lib b`, `libraries = [...]`);
+/// settings (`codesys:heap=256KiB`) are checked and left to
+/// [`parse_libraries`].
+pub fn parse_names<S: AsRef<str>>(names: &[S]) -> Result<Vec<Dialect>, String> {
+    parse_libraries(names).map(|l| l.dialects)
+}
+
+fn parse_plain_names(names: &[&str]) -> Result<Vec<Dialect>, String> {
+    let mut out = Vec::new();
+    for &n in names {
         match Dialect::from_name(n) {
             Some(d) if !out.contains(&d) => out.push(d),
             Some(_) => {}
@@ -174,6 +231,18 @@ pub fn parse_names<S: AsRef<str>>(names: &[S]) -> Result<Vec<Dialect>, String> {
 /// generated from the project's STL files (when they have no error: their
 /// diagnostics come from [`check_sources`]).
 pub fn add_libraries(map: &mut SourceMap, dialects: &[Dialect]) {
+    add_libraries_to(
+        map,
+        &Libraries {
+            dialects: dialects.to_vec(),
+            heap_bytes: DEFAULT_HEAP_BYTES,
+        },
+    );
+}
+
+/// [`add_libraries`] with the libraries' settings (the CODESYS heap's size).
+pub fn add_libraries_to(map: &mut SourceMap, libraries: &Libraries) {
+    let dialects = libraries.dialects.as_slice();
     if let (Some((text, meanings)), _) = slc::translate(map) {
         let file = map.add(slc::GENERATED, text);
         for (at, meaning) in meanings {
@@ -187,7 +256,11 @@ pub fn add_libraries(map: &mut SourceMap, dialects: &[Dialect]) {
     }
     for d in dialects {
         if let (Some(name), Some(text)) = (d.library_file(), d.library_source()) {
-            map.add(name, text);
+            if *d == Dialect::Codesys {
+                map.add(name, heap_size::codesys_library(text, libraries.heap_bytes));
+            } else {
+                map.add(name, text);
+            }
         }
     }
 }
@@ -393,7 +466,7 @@ pub fn check_sources(
     if codesys {
         // A program's variables and actions used from other POUs: hidden
         // globals first (its VAR_STAT too), before the rewrites below.
-        program_access::rewrite(&mut units, &is_user, interner);
+        program_access::rewrite(&mut units, &is_user, interner, &mut diags);
         // `__NEW` / `__DELETE`: calls of the library's allocator.
         let heap_lib = sources
             .files()

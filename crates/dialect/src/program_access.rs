@@ -18,17 +18,27 @@
 
 use crate::codesys::Rename;
 use crate::walk::{self, Visitor};
-use automat_base::{Interner, Symbol};
+use automat_base::{Diagnostic, Interner, Span, Symbol};
 use automat_syntax::ast::{
     Body, Expr, ExprKind, Ident, Item, PouKind, SourceUnit, Stmt, StmtKind, VarBlock, VarDecl,
     VarKind,
 };
 use std::collections::{HashMap, HashSet};
 
+mod needed;
+
 /// What other POUs may reach of one program.
 struct Program {
-    /// Variable → its hidden global.
+    /// Variable → its hidden global: only those other POUs name and those
+    /// the actions they call use.
     globals: HashMap<Symbol, Symbol>,
+    /// Every variable of the program (`Main.n` in Main itself is its `n`).
+    vars: HashSet<Symbol>,
+    /// Its inputs, outputs and in-outs, which a configuration connects.
+    params: HashSet<Symbol>,
+    /// A moved variable → where another POU first reaches it, and whether
+    /// through an action (for the configuration's connection, E164).
+    reached_at: HashMap<Symbol, (Span, bool)>,
     /// Hidden global → (its VAR_EXTERNAL declaration, CONSTANT).
     externals: HashMap<Symbol, (VarDecl, bool)>,
     /// Action → its hidden function.
@@ -46,11 +56,14 @@ pub fn rewrite(
     units: &mut [SourceUnit],
     is_user: &dyn Fn(&SourceUnit) -> bool,
     interner: &mut Interner,
+    diags: &mut Vec<Diagnostic>,
 ) {
-    let programs = collect(units, is_user, interner);
+    let mut programs = collect(units, is_user, interner);
     if programs.is_empty() {
         return;
     }
+    needed::keep_reached(units, is_user, interner, &mut programs);
+    needed::check_connections(units, is_user, &programs, interner, diags);
     let mut exported: HashSet<Symbol> = HashSet::new();
     let mut called: HashSet<Symbol> = HashSet::new();
     for unit in units.iter_mut().filter(|u| is_user(u)) {
@@ -150,6 +163,15 @@ fn collect(
             let local = for_vars.get(&p.name.sym);
             let mut prog = Program {
                 globals: HashMap::new(),
+                vars: names(&p.var_blocks, &[]),
+                params: p
+                    .var_blocks
+                    .iter()
+                    .filter(|b| matches!(b.kind, VarKind::Input | VarKind::Output | VarKind::InOut))
+                    .flat_map(|b| b.decls.iter())
+                    .flat_map(|d| d.names.iter().map(|n| n.sym))
+                    .collect(),
+                reached_at: HashMap::new(),
                 externals: HashMap::new(),
                 actions: HashMap::new(),
                 for_locals: Vec::new(),
@@ -347,7 +369,7 @@ impl Visitor for Reach<'_> {
                     // rest of its body when other POUs reach it).
                     let m = *member;
                     let local = |d: &VarDecl| d.names.iter().any(|n| n.sym == m.sym);
-                    if prog.globals.contains_key(&m.sym) || prog.for_locals.iter().any(local) {
+                    if prog.vars.contains(&m.sym) || prog.for_locals.iter().any(local) {
                         e.kind = ExprKind::Name(m);
                         return false;
                     }
@@ -482,8 +504,9 @@ fn own_externals(p: &mut automat_syntax::ast::Pou, prog: &Program, action: bool)
             .filter(|(_, c)| *c == constant)
             .map(|(d, _)| d.clone())
             .collect();
-        // A stable order (the map's is not): as declared.
-        decls.sort_by_key(|d| d.span.start);
+        // A stable order (the map's is not): as declared, by each name's
+        // place (`count, calls : INT;` is one declaration).
+        decls.sort_by_key(|d| d.names.first().map_or(d.span.start, |n| n.span.start));
         if let Some(first) = decls.first() {
             let span = first.span;
             let block = VarBlock {

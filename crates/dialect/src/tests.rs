@@ -153,3 +153,65 @@ fn codesys_comments_and_pragmas() {
     let pragmas = "{attribute 'a'}\nPROGRAM p {flag off} VAR x : INT; END_VAR x := 1; END_PROGRAM";
     assert_eq!(codes(pragmas, Dialect::Codesys), [Code::W160]);
 }
+
+/// A program other POUs reach moves to hidden globals only what they name
+/// and what the actions they call use: its other inputs, outputs and
+/// variables stay the instance's own, so a configuration connects them.
+#[test]
+fn program_access_moves_only_what_is_reached() {
+    use automat_syntax::ast::{Item, PouKind};
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../tests/conformance/codesys_program_access_config.st"
+    ))
+    .unwrap_or_default();
+    let mut map = SourceMap::new();
+    map.add("t.st", text);
+    add_libraries(&mut map, &[Dialect::Codesys]);
+    let mut interner = Interner::new();
+    let (units, a) = check_sources(&map, &mut interner, &[Dialect::Codesys]);
+    let codes: Vec<Code> = a.diagnostics.iter().map(|d| d.code).collect();
+    assert_eq!(codes, []);
+    let mut own = Vec::new();
+    let mut globals = Vec::new();
+    for item in units.iter().flat_map(|u| u.items.iter()) {
+        match item {
+            Item::Pou(p) if p.kind == PouKind::Program && interner.name(p.name.sym) == "Main" => {
+                for b in &p.var_blocks {
+                    for d in &b.decls {
+                        for n in &d.names {
+                            own.push((format!("{:?}", b.kind), interner.name(n.sym).to_string()));
+                        }
+                    }
+                }
+            }
+            Item::Globals(b) => {
+                for d in &b.decls {
+                    for n in &d.names {
+                        globals.push(interner.name(n.sym).to_string());
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    let own: Vec<(&str, &str)> = own.iter().map(|(k, n)| (k.as_str(), n.as_str())).collect();
+    assert_eq!(
+        own,
+        [
+            ("Input", "step"),
+            ("Output", "total"),
+            ("External", "Main.count"),
+            ("External", "Main.calls"),
+        ]
+    );
+    assert_eq!(globals, ["Main.count", "Main.calls"]);
+}
+
+/// `__ISVALIDREF` beside real references: the reference desugaring turns
+/// the right use into `r <> NULL` and leaves the misuses to the checker.
+#[test]
+fn isvalidref_misuse_beside_a_reference() {
+    let text = "PROGRAM Main\nVAR x : INT; r : REFERENCE TO INT; ok : BOOL; END_VAR\n    r REF= x;\n    ok := __ISVALIDREF(r);\n    ok := __ISVALIDREF(x);\n    ok := __ISVALIDREF(r, r);\nEND_PROGRAM\n";
+    assert_eq!(codes(text, Dialect::Codesys), [Code::E163, Code::E163]);
+}

@@ -25,6 +25,7 @@
 
 mod compile;
 mod emit;
+mod inline;
 mod instances;
 mod locals;
 mod promote;

@@ -100,6 +100,9 @@ pub(crate) struct Tx<'a, 'b> {
     pub ranges: HashMap<Value, (i64, i64)>,
     /// `this .. this + extent` is proved inside the image (0: nothing is).
     pub extent: u64,
+    /// Values the current block stored through register addresses since
+    /// its last other write (`inline.rs`: a call's arguments).
+    pub args: Vec<crate::inline::Arg>,
 }
 
 /// Per register class, the variables shared by block-local registers:
@@ -110,7 +113,7 @@ pub(crate) struct Pools([Vec<Variable>; 3]);
 impl Pools {
     /// The variable of every register of `f`: a pool slot's when it is
     /// block-local, else its own.
-    fn vars(&mut self, b: &mut FunctionBuilder<'_>, f: &Func) -> Vec<Variable> {
+    pub(crate) fn vars(&mut self, b: &mut FunctionBuilder<'_>, f: &Func) -> Vec<Variable> {
         let slots = crate::locals::slots(f, &leaders(&f.code));
         f.regs
             .iter()
@@ -321,6 +324,7 @@ pub fn function(
         facts: HashMap::new(),
         ranges: HashMap::new(),
         extent: 0,
+        args: Vec::new(),
     };
     if tx.this_safe {
         tx.extent = this_extent(f);
@@ -400,7 +404,7 @@ impl Tx<'_, '_> {
         self.b.ins().store(mem(), l, self.ctx, rt::OFF_LEFT);
     }
 
-    fn body(&mut self) -> Result<(), JitError> {
+    pub(crate) fn body(&mut self) -> Result<(), JitError> {
         let code = &self.f.code;
         let lead = leaders(code);
         let headers = loop_headers(code);
@@ -576,6 +580,7 @@ impl Tx<'_, '_> {
                     .find(|(i, _)| *i == func)
                     .map(|(_, r)| *r)
                     .ok_or_else(|| JitError::Backend(format!("callee {func} at {pc}")))?;
+                let origin = self.origin(this);
                 let cont = self.b.create_block();
                 let small = self
                     .funcs
@@ -587,7 +592,7 @@ impl Tx<'_, '_> {
                         // instance is proved inside this one, so inside
                         // the image.
                         let t = self.proved_offset(this)?;
-                        self.inline_body(g, func, t, cont, this_extent(g))?;
+                        self.inline_body(g, func, t, cont, this_extent(g), origin)?;
                         self.b.switch_to_block(cont);
                         self.reload_after(g, Some(range));
                         self.forget();
@@ -596,7 +601,7 @@ impl Tx<'_, '_> {
                 }
                 let t = self.offset(this);
                 if let Some(g) = small {
-                    self.inline(g, func, t, cont)?;
+                    self.inline(g, func, t, cont, origin)?;
                 }
                 self.store_left();
                 let call = self.b.ins().call(callee, &[self.ctx, t]);
@@ -671,119 +676,6 @@ impl Tx<'_, '_> {
     }
 }
 
-impl<'a> Tx<'a, '_> {
-    /// Compiles the body of callee `g` (function `index`) in place with
-    /// `this` = `t`, when every `This` access of it is inside the image;
-    /// otherwise falls through to the ordinary call, whose checked variant
-    /// faults exactly. Its faults name `g` and its own instruction, as the
-    /// interpreter's do; its `Ret` continues at `cont`.
-    fn inline(
-        &mut self,
-        g: &'a Func,
-        index: u32,
-        t: Value,
-        cont: cranelift_codegen::ir::Block,
-    ) -> Result<(), JitError> {
-        let extent = this_extent(g);
-        let end = self.b.ins().iadd_imm_s(t, extent as i64);
-        let ok = self
-            .b
-            .ins()
-            .icmp(IntCC::UnsignedLessThanOrEqual, end, self.len);
-        let inline = self.b.create_block();
-        let call = self.b.create_block();
-        self.b.ins().brif(ok, inline, &[], call, &[]);
-        self.b.switch_to_block(inline);
-        self.inline_body(g, index, t, cont, extent)?;
-        self.b.switch_to_block(call);
-        Ok(())
-    }
-
-    /// The body of `g` in place, `this` = `t` proved to have `extent`
-    /// bytes inside the image; its `Ret` continues at `cont`.
-    fn inline_body(
-        &mut self,
-        g: &'a Func,
-        index: u32,
-        t: Value,
-        cont: cranelift_codegen::ir::Block,
-        extent: u64,
-    ) -> Result<(), JitError> {
-        let vars = self.pools.vars(&mut self.b, g);
-        let saved = (
-            std::mem::replace(&mut self.f, g),
-            std::mem::replace(&mut self.index, index),
-            std::mem::replace(&mut self.this, t),
-            std::mem::replace(&mut self.vars, vars),
-            std::mem::replace(&mut self.this_safe, true),
-            self.ret_to.replace(cont),
-            std::mem::take(&mut self.promoted),
-            std::mem::take(&mut self.facts),
-            std::mem::take(&mut self.ranges),
-            std::mem::replace(&mut self.extent, extent),
-        );
-        self.inlined += g.code.len();
-        let pc = self.pc;
-        let r = self.body();
-        self.pc = pc;
-        (
-            self.f,
-            self.index,
-            self.this,
-            self.vars,
-            self.this_safe,
-            self.ret_to,
-            self.promoted,
-            self.facts,
-            self.ranges,
-            self.extent,
-        ) = saved;
-        r
-    }
-
-    /// The bytes `this + [lo, end)` of this instance that the instance
-    /// `a` of callee `g` occupies, when the block's facts prove them
-    /// inside the proved extent.
-    fn proved_instance(&self, a: Addr, g: &Func) -> Option<(u64, u64)> {
-        let size = this_extent(g);
-        if a.base == Base::This {
-            // A scalar instance (`tmr(IN := x)`) at a constant offset.
-            let end = (a.offset as u64).checked_add(size)?;
-            return (self.this_safe && end <= self.extent).then_some((a.offset as u64, end));
-        }
-        self.proved_range(a, u32::try_from(size).ok()?)
-    }
-
-    /// The offset of a register address `proved_range` proved: the plain
-    /// sum (it does not wrap, see `signed_offset`).
-    fn proved_offset(&mut self, a: Addr) -> Result<Value, JitError> {
-        let Base::Reg(r) = a.base else {
-            // `This` inside the proved extent: the plain sum too.
-            return Ok(self.offset(a));
-        };
-        let v = self.get(r)?;
-        Ok(self.b.ins().iadd_imm_s(v, signed_offset(a)))
-    }
-
-    /// After an inlined call of `g` on the bytes `range` of this
-    /// instance: reloads the promoted slots it may have written. A callee
-    /// that writes memory only through its own `This` (no register or
-    /// absolute stores, copies or builtins) writes only inside `range`.
-    fn reload_after(&mut self, g: &Func, range: Option<(u64, u64)>) {
-        let own_only = g.code.iter().all(|i| match *i {
-            Inst::Store { addr, .. } | Inst::StoreBit { addr, .. } => addr.base == Base::This,
-            Inst::Copy { .. } | Inst::Builtin { .. } | Inst::Call { .. } => false,
-            _ => true,
-        });
-        match range {
-            Some((lo, end)) if own_only => {
-                self.reload_slots(|off, n| (off as u64) < end && lo < off as u64 + n as u64)
-            }
-            _ => self.reload_slots(|_, _| true),
-        }
-    }
-}
-
 impl Tx<'_, '_> {
     /// Declares the promoted slots of `f` and loads them (`promote.rs`).
     fn promote(&mut self, f: &Func) {
@@ -824,7 +716,7 @@ impl Tx<'_, '_> {
 
     /// The bytes `this + [lo, hi)` a register access may touch, when the
     /// facts prove them inside the proved extent.
-    fn proved_range(&self, a: Addr, size: u32) -> Option<(u64, u64)> {
+    pub(crate) fn proved_range(&self, a: Addr, size: u32) -> Option<(u64, u64)> {
         let Base::Reg(r) = a.base else { return None };
         let Some(Fact::This(lo, hi)) = self.facts.get(&r).copied() else {
             return None;
@@ -837,6 +729,7 @@ impl Tx<'_, '_> {
     /// Ends what is known about registers and values (a new block, or
     /// after code that does not dominate what follows).
     pub fn forget(&mut self) {
+        self.args.clear();
         self.facts.clear();
         self.ranges.clear();
     }
@@ -844,6 +737,7 @@ impl Tx<'_, '_> {
     /// Every instruction but control: the slots and facts of `promote.rs`
     /// around `emit_plain`.
     pub fn emit(&mut self, inst: &Inst) -> Result<(), JitError> {
+        self.note_args(inst)?;
         match *inst {
             Inst::Load { dst, ty, addr } if addr.base == Base::This => {
                 if let Some(&(t, var)) = self.promoted.get(&addr.offset) {
@@ -885,6 +779,10 @@ impl Tx<'_, '_> {
                     None => self.reload_slots(|_, _| true),
                 }
             }
+            // Time arithmetic, conversions, math: a register result only.
+            Inst::Builtin { op, .. } if crate::inline::register_only(op) => {
+                self.emit_plain(inst)?
+            }
             Inst::Store { .. }
             | Inst::StoreBit { .. }
             | Inst::Copy { .. }
@@ -925,7 +823,7 @@ impl Tx<'_, '_> {
 /// When `v + off` computed this way lies in `0 ..= extent` (checked by
 /// `proved_range`), that u32 sum does not wrap and is the same number, so
 /// the access is proved like any other.
-fn signed_offset(a: Addr) -> i64 {
+pub(crate) fn signed_offset(a: Addr) -> i64 {
     a.offset as i32 as i64
 }
 

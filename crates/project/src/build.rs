@@ -56,9 +56,10 @@ pub fn compile_map(
         text,
         bad_input: true,
     };
-    let dialects =
-        automat_dialect::parse_names(libraries).map_err(|e| bad(format!("error: {e}\n")))?;
-    automat_dialect::add_libraries(&mut map, &dialects);
+    let libraries =
+        automat_dialect::parse_libraries(libraries).map_err(|e| bad(format!("error: {e}\n")))?;
+    automat_dialect::add_libraries_to(&mut map, &libraries);
+    let dialects = libraries.dialects;
     let mut interner = Interner::new();
     let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &dialects);
     let warnings = render::render_report(&map, &analysis.diagnostics);

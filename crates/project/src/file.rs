@@ -53,6 +53,7 @@ struct RawFile {
     #[serde(default)]
     tasks: BTreeMap<Spanned<String>, RawTask>,
     runtime: Option<RawRuntime>,
+    codesys: Option<RawCodesys>,
     /// `[modbus]`: read and checked by `automat-fieldbus` from the same
     /// text (it needs the compiled program).
     #[serde(default)]
@@ -109,6 +110,14 @@ pub struct UserSpec {
 
 /// The roles of the network API, least rights first.
 pub const ROLES: [&str; 3] = ["viewer", "operator", "engineer"];
+
+/// `[codesys]`: settings of the CODESYS dialect.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCodesys {
+    /// The heap of `__NEW`/`__DELETE` (`"256KiB"`).
+    heap: Option<Spanned<String>>,
+}
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -487,6 +496,10 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
         .runtime
         .map(|r| runtime_spec(file, r, &mut errors))
         .unwrap_or_default();
+    let mut libraries = raw.project.libraries;
+    if let Some(c) = raw.codesys {
+        codesys_settings(file, c, &mut libraries, &mut errors);
+    }
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -498,7 +511,7 @@ pub fn parse(path: &Path, file: FileId, text: &str) -> Result<Project, Vec<Diagn
         sources,
         program: raw.project.program,
         cycle_time_ns,
-        libraries: raw.project.libraries,
+        libraries,
         plant,
         tasks,
         retain,
@@ -590,6 +603,36 @@ fn plant_program(
 
 /// `[runtime]`: `realtime = true`, `priority` (SCHED_FIFO 1..99, default
 /// 80), `cpus` (`"1"`, `"0,2-3"`).
+/// `[codesys] heap = "256KiB"`: checked here, and carried as the setting
+/// of the `codesys` library (`codesys:heap=262144`, as `--lib` takes it).
+fn codesys_settings(
+    file: FileId,
+    raw: RawCodesys,
+    libraries: &mut [String],
+    errors: &mut Vec<Diagnostic>,
+) {
+    let Some(heap) = raw.heap else { return };
+    let at = span_of(file, heap.span());
+    let bytes = match automat_dialect::parse_heap_size(heap.get_ref()) {
+        Ok(b) => b,
+        Err(e) => {
+            errors.push(Diagnostic::error(Code::E300, at, format!("heap: {e}")));
+            return;
+        }
+    };
+    let codesys = libraries.iter_mut().find(|l| {
+        automat_dialect::Dialect::from_name(l) == Some(automat_dialect::Dialect::Codesys)
+    });
+    match codesys {
+        Some(l) => *l = format!("{}:heap={bytes}", l.trim()),
+        None => errors.push(Diagnostic::error(
+            Code::E300,
+            at,
+            "heap: `[codesys]` sets the CODESYS dialect, which this project does not use: add `libraries = [\"codesys\"]` to `[project]`",
+        )),
+    }
+}
+
 fn runtime_spec(file: FileId, raw: RawRuntime, errors: &mut Vec<Diagnostic>) -> RuntimeSpec {
     use automat_runtime::realtime::{parse_cpus, Realtime};
     let mut rt = Realtime::default();

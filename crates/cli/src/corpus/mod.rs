@@ -108,10 +108,11 @@ fn projects(source: &Path, whole: bool) -> Result<Vec<Vec<PathBuf>>, String> {
 }
 
 fn measure_project(paths: &[PathBuf], opts: &Options, into: &mut Source) -> Result<(), String> {
-    let dialects = automat_dialect::parse_names(&opts.libraries)?;
+    let libraries = automat_dialect::parse_libraries(&opts.libraries)?;
     let mut map = crate::files::load(paths)?;
     let own = map.len();
-    automat_dialect::add_libraries(&mut map, &dialects);
+    automat_dialect::add_libraries_to(&mut map, &libraries);
+    let dialects = libraries.dialects;
     let mut interner = Interner::new();
     let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &dialects);
     let lowered = if analysis.has_errors() {

@@ -36,8 +36,9 @@ fn compile(name: &str, text: &str, spec: &Spec, ctx: Context) -> Result<Program,
     }
     let mut names = spec.libraries.clone();
     names.extend(ctx.libraries.iter().cloned());
-    let dialects = automat_dialect::parse_names(&names)?;
-    automat_dialect::add_libraries(&mut map, &dialects);
+    let libraries = automat_dialect::parse_libraries(&names)?;
+    automat_dialect::add_libraries_to(&mut map, &libraries);
+    let dialects = libraries.dialects;
     let mut interner = Interner::new();
     let (units, analysis) = automat_dialect::check_sources(&map, &mut interner, &dialects);
     if analysis.has_errors() {

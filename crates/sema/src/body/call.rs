@@ -177,6 +177,10 @@ impl<'m> Checker<'m> {
                 self.args_unchecked(args);
                 Typed::ERROR
             }
+            Named::Var | Named::Unknown if self.interner.name(sym) == "__ISVALIDREF" => {
+                self.isvalidref_misuse(span, args);
+                Typed::ERROR
+            }
             Named::Var | Named::Unknown => {
                 self.err(Code::E022, span, |c| {
                     format!(

@@ -10,6 +10,7 @@
 
 mod call;
 mod expr;
+mod isvalidref;
 mod labels;
 pub mod resolve;
 mod stdcall;

@@ -468,7 +468,14 @@ impl Refs<'_> {
         let ExprKind::Call { callee, args } = &mut e.kind else {
             return;
         };
-        if matches!(&callee.kind, ExprKind::Name(n) if n.sym == self.valid) && args.len() == 1 {
+        // `__ISVALIDREF` of anything but one reference is left for the
+        // checker, which says what is wrong with it (E163).
+        let valid = matches!(&callee.kind, ExprKind::Name(n) if n.sym == self.valid);
+        let one_reference = match args.as_slice() {
+            [a] => a.name.is_none() && a.value.as_ref().is_some_and(|v| self.is_reference(v, sc)),
+            _ => false,
+        };
+        if valid && one_reference {
             let Some(mut x) = args.first_mut().and_then(|a| a.value.take()) else {
                 return;
             };
