@@ -33,6 +33,7 @@ mod strplace;
 pub mod shared {
     pub use crate::builtins::call as builtin;
     pub use crate::interp::{check_range, fault, interrupted, Ctx};
+    pub use crate::strplace::{handles as str_in_place, run as run_str_in_place};
 }
 
 use automat_ir::{Fault, FaultKind, Interrupt, Program, ProgramInstance, Site};

@@ -6,10 +6,16 @@
 //! Anything else (a range leaving the image, a negative length, WSTRING,
 //! overlapping operands of CONCAT) returns `None` and takes the general
 //! path, which also produces every fault, so results are the same bytes.
+//!
+//! [`run`] works on the operands' register bits directly, so the JIT calls
+//! it from generated code with the operands in machine registers
+//! (`automat_jit::rt::jit_str`), without the slot array and the dispatch
+//! of the general builtin entry; the interpreter calls it through
+//! [`narrow`] and [`int_text`].
 
 use crate::interp::Ctx;
 use automat_iec::Elementary as E;
-use automat_ir::code::{Reg, StrFn};
+use automat_ir::code::{Builtin, Reg, StrFn};
 use automat_ir::strbuf::{self, LEN_BYTES, MAX_LEN};
 
 /// The units of the string at `at` as (start, length), when its header and
@@ -33,77 +39,135 @@ fn overlap(a: usize, n: usize, b: usize, m: usize) -> bool {
     a < b + m && b < a + n
 }
 
-/// Runs `s` in place; `None`: not handled here (nothing was written).
-pub fn narrow(ctx: &mut Ctx, s: StrFn, dst: Option<Reg>, args: &[Reg]) -> Option<()> {
-    let reg = |ctx: &Ctx, i: usize| args.get(i).map(|&r| ctx.get(r));
-    match s {
-        StrFn::Len => {
-            let (_, n) = units(ctx.image, reg(ctx, 0)? as u32)?;
-            if let Some(d) = dst {
-                ctx.set(d, n as u64);
-            }
-            Some(())
-        }
-        StrFn::Assign | StrFn::Left => {
-            let (d, cap) = (reg(ctx, 0)? as u32, reg(ctx, 1)? as u32);
-            let (from, mut n) = units(ctx.image, reg(ctx, 2)? as u32)?;
+/// Whether [`run`] may handle `op` with `count` arguments (it may still
+/// decline a call at run time).
+pub fn handles(op: Builtin, count: usize) -> bool {
+    // The operands each reads (CONCAT of more than two: the general path).
+    match op {
+        Builtin::Str(StrFn::Len, false) => (1..=4).contains(&count),
+        Builtin::Str(StrFn::Assign, false) => (3..=4).contains(&count),
+        Builtin::Str(StrFn::Left, false) | Builtin::Str(StrFn::Concat, false) => count == 4,
+        Builtin::ToString(from, false) => from.is_int() && (3..=4).contains(&count),
+        _ => false,
+    }
+}
+
+/// Runs `op` in place over the argument register bits `a` (as the general
+/// path reads them; missing ones are 0): `Some(result)` (LEN's length, else
+/// 0) or `None`, not handled here (nothing was written).
+pub fn run(image: &mut [u8], op: Builtin, a: [u64; 4]) -> Option<u64> {
+    match op {
+        Builtin::Str(StrFn::Len, false) => Some(units(image, a[0] as u32)?.1 as u64),
+        Builtin::Str(s @ (StrFn::Assign | StrFn::Left), false) => {
+            let (d, cap) = (a[0] as u32, a[1] as u32);
+            let (from, mut n) = units(image, a[2] as u32)?;
             if s == StrFn::Left {
                 // LEFT(IN, L) with L < 0 faults on the general path.
-                n = n.min(usize::try_from(reg(ctx, 3)? as i64).ok()?);
+                n = n.min(usize::try_from(a[3] as i64).ok()?);
             }
-            let (to, m) = room(ctx.image, d, cap, n)?;
+            let (to, m) = room(image, d, cap, n)?;
             // A memmove: the source is read as a whole before the header
             // is written, as the general path's copy is.
-            ctx.image.copy_within(from..from + m, to);
-            strbuf::set_len(ctx.image, d, m as u32)
+            image.copy_within(from..from + m, to);
+            strbuf::set_len(image, d, m as u32)?;
+            Some(0)
         }
-        StrFn::Concat if args.len() == 4 => {
-            let (d, cap) = (reg(ctx, 0)? as u32, reg(ctx, 1)? as u32);
-            let (a, na) = units(ctx.image, reg(ctx, 2)? as u32)?;
-            let (b, nb) = units(ctx.image, reg(ctx, 3)? as u32)?;
-            let (to, m) = room(ctx.image, d, cap, na + nb)?;
+        Builtin::Str(StrFn::Concat, false) => {
+            let (d, cap) = (a[0] as u32, a[1] as u32);
+            let (x, nx) = units(image, a[2] as u32)?;
+            let (y, ny) = units(image, a[3] as u32)?;
+            let (to, m) = room(image, d, cap, nx + ny)?;
             let head = to - LEN_BYTES as usize;
             let written = m + LEN_BYTES as usize;
-            if overlap(head, written, a, na) || overlap(head, written, b, nb) {
+            if overlap(head, written, x, nx) || overlap(head, written, y, ny) {
                 return None;
             }
-            let first = na.min(m);
-            ctx.image.copy_within(a..a + first, to);
-            ctx.image.copy_within(b..b + (m - first), to + first);
-            strbuf::set_len(ctx.image, d, m as u32)
+            let first = nx.min(m);
+            image.copy_within(x..x + first, to);
+            image.copy_within(y..y + (m - first), to + first);
+            strbuf::set_len(image, d, m as u32)?;
+            Some(0)
+        }
+        Builtin::ToString(from, false) => {
+            let (d, cap, bits) = (a[0] as u32, a[1] as u32, a[2]);
+            let mut buf = [0u8; 20];
+            // The register holds the value as `builtins::to_value` reads it.
+            let digits = match from {
+                E::Sint | E::Int | E::Dint | E::Lint => {
+                    let v = bits as i64;
+                    decimal(&mut buf, v < 0, v.unsigned_abs())
+                }
+                E::Usint | E::Uint | E::Udint | E::Ulint => decimal(&mut buf, false, bits),
+                _ => return None,
+            };
+            let (to, m) = room(image, d, cap, digits.len())?;
+            image.get_mut(to..to + m)?.copy_from_slice(digits.get(..m)?);
+            strbuf::set_len(image, d, m as u32)?;
+            Some(0)
         }
         _ => None,
     }
 }
 
+/// The decimal text of `v` (with a leading `-` when `negative`), as
+/// `automat_iec::convert` prints an integer, built from the end of `buf`
+/// without the formatting machinery (a string loop spent more time in
+/// `write!` than in the copy).
+fn decimal(buf: &mut [u8; 20], negative: bool, mut v: u64) -> &[u8] {
+    let mut i = buf.len();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (v % 10) as u8;
+        v /= 10;
+        if v == 0 {
+            break;
+        }
+    }
+    if negative {
+        i -= 1;
+        buf[i] = b'-';
+    }
+    &buf[i..]
+}
+
+/// The register bits of `args` as [`run`] takes them.
+fn bits(ctx: &Ctx, args: &[Reg]) -> Option<[u64; 4]> {
+    if args.len() > 4 {
+        return None;
+    }
+    let mut a = [0u64; 4];
+    for (slot, &r) in a.iter_mut().zip(args) {
+        *slot = ctx.get(r);
+    }
+    Some(a)
+}
+
+/// Runs `s` in place; `None`: not handled here (nothing was written).
+pub fn narrow(ctx: &mut Ctx, s: StrFn, dst: Option<Reg>, args: &[Reg]) -> Option<()> {
+    let op = Builtin::Str(s, false);
+    if !handles(op, args.len()) {
+        return None;
+    }
+    let r = run(ctx.image, op, bits(ctx, args)?)?;
+    if let (StrFn::Len, Some(d)) = (s, dst) {
+        ctx.set(d, r);
+    }
+    Some(())
+}
+
 /// `<integer>_TO_STRING` in place: the decimal digits, as
 /// `automat_iec::convert` prints an integer, written without allocation.
 pub fn int_text(ctx: &mut Ctx, from: E, args: &[Reg]) -> Option<()> {
-    use std::io::Write;
-    let reg = |ctx: &Ctx, i: usize| args.get(i).map(|&r| ctx.get(r));
-    let (d, cap, bits) = (reg(ctx, 0)? as u32, reg(ctx, 1)? as u32, reg(ctx, 2)?);
-    let mut buf = [0u8; 24];
-    let n = {
-        let mut w = &mut buf[..];
-        // The register holds the value as `builtins::to_value` reads it.
-        match from {
-            E::Sint | E::Int | E::Dint | E::Lint => write!(w, "{}", bits as i64).ok()?,
-            E::Usint | E::Uint | E::Udint | E::Ulint => write!(w, "{bits}").ok()?,
-            _ => return None,
-        }
-        24 - w.len()
-    };
-    let (to, m) = room(ctx.image, d, cap, n)?;
-    ctx.image
-        .get_mut(to..to + m)?
-        .copy_from_slice(buf.get(..m)?);
-    strbuf::set_len(ctx.image, d, m as u32)
+    let op = Builtin::ToString(from, false);
+    if !handles(op, args.len()) {
+        return None;
+    }
+    run(ctx.image, op, bits(ctx, args)?).map(|_| ())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use automat_ir::code::Builtin;
 
     /// An image with `text` stored as a string at each offset of `at`.
     fn image(size: usize, at: &[(u32, &str)]) -> Vec<u8> {

@@ -13,11 +13,11 @@ use crate::rt::{self, BuiltinCall};
 use crate::translate::{mem, Tx};
 use crate::JitError;
 use automat_ir::code::{
-    Addr, Base, Builtin, Cmp, FloatOp, Inst, IntOp, MemTy, RegClass, ShiftOp, TimeFn,
+    Addr, Base, Builtin, Cmp, FloatOp, Inst, IntOp, MemTy, RegClass, ShiftOp, StrFn, TimeFn,
 };
 use cranelift_codegen::ir::{
     condcodes::{FloatCC, IntCC},
-    types, InstBuilder, MemFlagsData, Value,
+    types, AbiParam, InstBuilder, MemFlagsData, Signature, Value,
 };
 
 fn int_cc(c: Cmp, signed: bool) -> IntCC {
@@ -504,7 +504,74 @@ impl Tx<'_, '_> {
                 return Ok(());
             }
         }
+        if automat_engine::shared::str_in_place(op, args.len()) {
+            return self.str_in_place(op, dst, first, count, site);
+        }
         self.builtin_call(op, dst, first, count, site)
+    }
+
+    /// A string builtin worked in place: the operand bits go to
+    /// `rt::jit_str` in machine registers; only when it declines (-1: a
+    /// range outside the image, a negative length, overlapping operands)
+    /// does a cold block take the general path, which makes the same
+    /// bytes or the fault.
+    fn str_in_place(
+        &mut self,
+        op: Builtin,
+        dst: Option<u32>,
+        first: u32,
+        count: u16,
+        site: u32,
+    ) -> Result<(), JitError> {
+        if let (Builtin::Str(StrFn::Len, _), Some(d)) = (op, dst) {
+            if self.class(d)? != RegClass::I64 {
+                return self.builtin_call(op, dst, first, count, site);
+            }
+        }
+        let args = self.f.builtin_args(first, count).to_vec();
+        // The general path below registers this call under this number.
+        let index = self.builtins.len() as i64;
+        let mut vals = vec![self.ctx, self.iconst(index)];
+        for i in 0..4 {
+            let v = match args.get(i) {
+                Some(&r) => {
+                    let class = self.class(r)?;
+                    let v = self.get(r)?;
+                    self.bits(v, class)
+                }
+                None => self.iconst(0),
+            };
+            vals.push(v);
+        }
+        let mut sig = Signature::new(self.h.target.default_call_conv);
+        sig.params.push(AbiParam::new(self.h.ptr));
+        sig.params.extend([AbiParam::new(types::I64); 5]);
+        sig.returns.push(AbiParam::new(types::I64));
+        let sig = self.b.import_signature(sig);
+        let helper = self
+            .b
+            .ins()
+            .iconst(self.h.ptr, rt::jit_str as *const u8 as usize as i64);
+        let call = self.b.ins().call_indirect(sig, helper, &vals);
+        let r = self.result(call)?;
+        // LEN's length (as the interpreter sets it); the other functions
+        // write the image only.
+        if let (Builtin::Str(StrFn::Len, _), Some(d)) = (op, dst) {
+            self.set(d, r)?;
+        }
+        let slow = self.b.create_block();
+        let cont = self.b.create_block();
+        self.b.set_cold_block(slow);
+        let declined = self.b.ins().icmp_imm_s(IntCC::SignedLessThan, r, 0);
+        self.b.ins().brif(declined, slow, &[], cont, &[]);
+        self.b.switch_to_block(slow);
+        self.builtin_call(op, dst, first, count, site)?;
+        self.b.ins().jump(cont, &[]);
+        self.b.switch_to_block(cont);
+        if self.builtins.get(index as usize).map(|c| c.op) != Some(op) {
+            return Err(JitError::Backend("string builtin numbering".into()));
+        }
+        Ok(())
     }
 
     /// The numeric `*_TO_*` conversions that cannot fault, inline, with

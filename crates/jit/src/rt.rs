@@ -4,7 +4,7 @@
 //! faults and run builtins through `automat_engine::shared`, so messages and
 //! semantics exist once, in the interpreter.
 
-use automat_engine::shared::{builtin, check_range, fault, interrupted, Ctx};
+use automat_engine::shared::{builtin, check_range, fault, interrupted, run_str_in_place, Ctx};
 use automat_ir::code::{Builtin, CheckKind, MemTy, Reg};
 use automat_ir::interrupt::{POLL_COPY_BYTES, POLL_INSTRUCTIONS};
 use automat_ir::{Fault, FaultKind, Interrupt, Program};
@@ -317,4 +317,41 @@ pub unsafe extern "C" fn jit_copy(
         return 1;
     }
     0
+}
+
+/// The string builtins worked in place (`automat_engine::shared::
+/// run_str_in_place`: LEN, assignment, LEFT, CONCAT of two, integer to
+/// STRING) with the operand bits passed in machine registers: the
+/// program's builtin number `index` names the operation. Returns LEN's
+/// length (else 0), or -1 when the call is not handled in place (nothing
+/// was written): generated code then takes the general path
+/// ([`jit_builtin`]), which also produces every fault. Why: through the
+/// general entry a string loop spent more time storing slots and
+/// dispatching than copying.
+///
+/// # Safety
+/// `ctx` as for [`jit_fault`].
+pub unsafe extern "C" fn jit_str(
+    ctx: *mut RunCtx,
+    index: i64,
+    a: i64,
+    b: i64,
+    c: i64,
+    d: i64,
+) -> i64 {
+    // SAFETY: see the function's contract.
+    let ctx = unsafe { &mut *ctx };
+    // SAFETY: `shared` outlives the run (owned by the Jit).
+    let shared = unsafe { &*ctx.shared };
+    let Some(call) = shared.builtins.get(index as usize) else {
+        return -1;
+    };
+    // SAFETY: the image pointer and length describe the Jit's image, which
+    // nothing else accesses while the helper runs.
+    let image = unsafe { std::slice::from_raw_parts_mut(ctx.image, ctx.image_len as usize) };
+    let args = [a as u64, b as u64, c as u64, d as u64];
+    match run_str_in_place(image, call.op, args) {
+        Some(r) => r.min(i64::MAX as u64) as i64,
+        None => -1,
+    }
 }
