@@ -115,6 +115,16 @@ fn codesys_extensions_are_errors_without_the_dialect() {
             "PROGRAM p VAR d : DINT; i : INT; END_VAR i := d; END_PROGRAM",
             Code::E030,
         ),
+        (
+            "FUNCTION f : INT VAR_INPUT n : INT; END_VAR f := n; END_FUNCTION\n\
+             PROGRAM p VAR d : DINT; i : INT; END_VAR i := f(n := d); END_PROGRAM",
+            Code::E052,
+        ),
+        (
+            "FUNCTION_BLOCK g VAR_OUTPUT q : DINT; END_VAR q := 1; END_FUNCTION_BLOCK\n\
+             PROGRAM p VAR b : g; i : INT; END_VAR b(q => i); END_PROGRAM",
+            Code::E052,
+        ),
     ];
     for (text, code) in cases {
         let mut map = SourceMap::new();
@@ -132,7 +142,7 @@ fn codesys_extensions_are_errors_without_the_dialect() {
             d.notes
         );
         let got = codes(text, Dialect::Codesys);
-        let want: &[Code] = if code == Code::E030 {
+        let want: &[Code] = if code == Code::E030 || code == Code::E052 {
             &[Code::W161]
         } else {
             &[]

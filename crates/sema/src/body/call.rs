@@ -395,7 +395,19 @@ impl<'m> Checker<'m> {
                 } else {
                     Typed::of(param.ty)
                 };
-                if fits(&self.model.types, &from, tt) != Fit::Ok {
+                let fit = fits(&self.model.types, &from, tt);
+                if fit == Fit::Mismatch && self.codesys_narrowing(&from, tt) {
+                    self.warn(Code::W161, v.span, |c| {
+                        format!(
+                            "the output `{}` of `{}` ({}) is converted implicitly to {} for `{}`: the value may not fit",
+                            c.name(param.name),
+                            c.pou_name(pou.name),
+                            c.type_name(param.ty),
+                            c.type_name(tt),
+                            expr_text(c.interner, v)
+                        )
+                    });
+                } else if fit != Fit::Ok {
                     self.err(Code::E052, v.span, |c| {
                         format!(
                             "the output `{}` of `{}` has type {}, which cannot be stored in `{}` of type {}",
@@ -406,6 +418,12 @@ impl<'m> Checker<'m> {
                             c.type_name(tt)
                         )
                     });
+                    if fit == Fit::Mismatch && super::stmt::narrowing(&self.model.types, &from, tt)
+                    {
+                        self.note_codesys(
+                            "CODESYS converts such a value implicitly (warning W161)",
+                        );
+                    }
                 }
             }
             (Section::Output, false) => {
@@ -459,9 +477,35 @@ impl<'m> Checker<'m> {
                         c.pou_name(pou.name)
                     )
                 };
+                if fits(&self.model.types, &t, param.ty) == Fit::Mismatch
+                    && self.codesys_narrowing(&t, param.ty)
+                {
+                    self.warn(Code::W161, v.span, |c| {
+                        let from = crate::names::value_desc(&c.model.types, c.interner, &t);
+                        format!(
+                            "{from} is converted implicitly to {} for {}: the value may not fit",
+                            c.type_name(param.ty),
+                            what(c)
+                        )
+                    });
+                    return;
+                }
+                let narrow = fits(&self.model.types, &t, param.ty) == Fit::Mismatch
+                    && super::stmt::narrowing(&self.model.types, &t, param.ty);
                 self.arg_fits(&t, param.ty, v.span, &what);
+                if narrow {
+                    self.note_codesys("CODESYS converts such a value implicitly (warning W161)");
+                }
             }
         }
+    }
+
+    /// CODESYS converts a value between integer, bit-string and real types
+    /// implicitly when it is passed to a parameter of a user POU or an output
+    /// is bound to a variable, as in an assignment (W161 instead of E052).
+    /// Standard functions keep their strict signatures.
+    fn codesys_narrowing(&self, v: &Typed, to: TypeId) -> bool {
+        self.model.codesys && super::stmt::narrowing(&self.model.types, v, to)
     }
 
     /// Reports an argument that does not convert to its parameter's type.
