@@ -8,12 +8,14 @@ use crate::translate::{self, Helpers};
 use crate::JitError;
 use automat_ir::code::Inst;
 use automat_ir::Program;
+use cranelift_codegen::control::ControlPlane;
 use cranelift_codegen::ir::{types, AbiParam, InstBuilder, Signature, UserFuncName};
-use cranelift_codegen::isa::CallConv;
+use cranelift_codegen::isa::{CallConv, TargetIsa};
 use cranelift_codegen::settings::{self, Configurable};
+use cranelift_codegen::Context;
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::{JITBuilder, JITModule};
-use cranelift_module::{default_libcall_names, FuncId, Linkage, Module};
+use cranelift_module::{default_libcall_names, FuncId, Linkage, Module, ModuleReloc};
 
 /// The signature of a compiled POU: `(ctx: *mut RunCtx, this: u64) -> status`
 /// (0 ok, 1 fault recorded in the context).
@@ -34,10 +36,21 @@ fn err(what: impl std::fmt::Display) -> JitError {
     JitError::Backend(what.to_string())
 }
 
-fn module() -> Result<JITModule, JitError> {
+/// Functions longer than this many IR instructions are compiled with
+/// Cranelift's `opt_level = "none"`. Why: the egraph pass looks up a
+/// block's depth in its scope stack linearly, so a body whose dominator
+/// tree is deep (a CASE or an ELSIF chain of thousands of arms) compiles
+/// in time quadratic in its length; 20,000 ELSIF arms took 1.0 s with it
+/// and 0.5 s without, and 20,000 CASE arms 1.5 s and 0.6 s
+/// (`benches/compile_size.rs`). A body that long is straight-line control
+/// code, where the egraph's rewrites gain little. The compute kernels are
+/// hundreds of instructions long and keep `speed`.
+pub const QUICK_CODE: usize = crate::promote::MAX_CODE;
+
+fn isa(opt_level: &str) -> Result<std::sync::Arc<dyn TargetIsa>, JitError> {
     let mut flags = settings::builder();
     for (k, v) in [
-        ("opt_level", "speed"),
+        ("opt_level", opt_level),
         ("use_colocated_libcalls", "false"),
         ("is_pic", "false"),
         (
@@ -51,11 +64,14 @@ fn module() -> Result<JITModule, JitError> {
     ] {
         flags.set(k, v).map_err(err)?;
     }
-    let isa = cranelift_native::builder()
+    cranelift_native::builder()
         .map_err(err)?
         .finish(settings::Flags::new(flags))
-        .map_err(err)?;
-    let mut b = JITBuilder::with_isa(isa, default_libcall_names());
+        .map_err(err)
+}
+
+fn module() -> Result<JITModule, JitError> {
+    let mut b = JITBuilder::with_isa(isa("speed")?, default_libcall_names());
     b.symbol("automat_jit_fault", rt::jit_fault as *const u8);
     b.symbol("automat_jit_builtin", rt::jit_builtin as *const u8);
     b.symbol("automat_jit_copy", rt::jit_copy as *const u8);
@@ -140,6 +156,8 @@ pub fn compile(program: &Program, counted: bool, flag: i64) -> Result<Compiled, 
     // `AUTOMAT_JIT_DUMP=1`: print every function's Cranelift IR and
     // machine code to stderr (for profiling generated code).
     let dump = std::env::var_os("AUTOMAT_JIT_DUMP").is_some();
+    // The ISA for functions longer than `QUICK_CODE`, made when one is met.
+    let mut quick: Option<std::sync::Arc<dyn TargetIsa>> = None;
     for (i, f) in program.funcs.iter().enumerate() {
         if !wanted.get(i).copied().unwrap_or(false) {
             continue;
@@ -193,8 +211,17 @@ pub fn compile(program: &Program, counted: bool, flag: i64) -> Result<Compiled, 
             if dump {
                 ctx.set_disasm(true);
             }
-            m.define_function(id, &mut ctx)
-                .map_err(|e| err(format!("{}: {e:?}", f.name)))?;
+            if f.code.len() > QUICK_CODE {
+                let isa = match &quick {
+                    Some(isa) => isa.clone(),
+                    None => quick.insert(isa("none")?).clone(),
+                };
+                define_quick(&mut m, &*isa, id, &mut ctx)
+                    .map_err(|e| err(format!("{}: {e}", f.name)))?;
+            } else {
+                m.define_function(id, &mut ctx)
+                    .map_err(|e| err(format!("{}: {e:?}", f.name)))?;
+            }
             if dump {
                 eprintln!("=== {} entry={entry}\n{}", f.name, ctx.func.display());
                 if let Some(c) = ctx.compiled_code() {
@@ -227,6 +254,33 @@ pub fn compile(program: &Program, counted: bool, flag: i64) -> Result<Compiled, 
         builtins,
         bounds,
     })
+}
+
+/// Compiles `ctx`'s function with `isa` (not the module's own) and
+/// defines it in `m` as that code and its relocations, as
+/// `Module::define_function` does with the module's ISA.
+fn define_quick(
+    m: &mut JITModule,
+    isa: &dyn TargetIsa,
+    id: FuncId,
+    ctx: &mut Context,
+) -> Result<(), String> {
+    let (align, bytes, relocs) = {
+        let code = ctx
+            .compile(isa, &mut ControlPlane::default())
+            .map_err(|e| format!("{:?}", e.inner))?;
+        (
+            code.buffer.alignment as u64,
+            code.code_buffer().to_vec(),
+            code.buffer.relocs().to_vec(),
+        )
+    };
+    let relocs: Vec<ModuleReloc> = relocs
+        .iter()
+        .map(|r| ModuleReloc::from_mach_reloc(r, &ctx.func, id))
+        .collect();
+    m.define_function_bytes(id, align, &bytes, &relocs)
+        .map_err(|e| format!("{e:?}"))
 }
 
 /// A function with the `preserve_all` convention (it saves every register

@@ -34,6 +34,11 @@ mod rt;
 mod select;
 mod translate;
 
+/// The lengths (IR instructions) above which a function is compiled for
+/// compile time linear in its length: see `compile.rs` and `promote.rs`.
+pub use compile::QUICK_CODE;
+pub use promote::MAX_CODE as MAX_PROMOTED_CODE;
+
 use automat_ir::code::Inst;
 use automat_ir::{Fault, FaultKind, Interrupt, Program, ProgramInstance, Site};
 use cranelift_jit::JITModule;

@@ -114,13 +114,35 @@ impl Pools {
     /// The variable of every register of `f`: a pool slot's when it is
     /// block-local, else its own.
     pub(crate) fn vars(&mut self, b: &mut FunctionBuilder<'_>, f: &Func) -> Vec<Variable> {
-        let slots = crate::locals::slots(f, &leaders(&f.code));
+        let lead = leaders(&f.code);
+        let slots = crate::locals::slots(f, &lead);
+        let shared = crate::locals::shared(f, &lead);
+        // The variables of registers live in several blocks, shared by
+        // those whose ranges do not overlap: this function's own (an
+        // inlined callee's ranges are in its own block numbering).
+        let mut long: [Vec<Variable>; 3] = Default::default();
         f.regs
             .iter()
             .zip(slots)
-            .map(|(c, slot)| {
+            .zip(shared)
+            .map(|((c, slot), wide)| {
                 let Some(k) = slot else {
-                    return b.declare_var(class_type(*c));
+                    let Some(k) = wide else {
+                        return b.declare_var(class_type(*c));
+                    };
+                    let [i, s, d] = &mut long;
+                    let pool = match c {
+                        RegClass::I64 => i,
+                        RegClass::F32 => s,
+                        RegClass::F64 => d,
+                    };
+                    while pool.len() <= k as usize {
+                        pool.push(b.declare_var(class_type(*c)));
+                    }
+                    return pool
+                        .get(k as usize)
+                        .copied()
+                        .unwrap_or_else(|| b.declare_var(class_type(*c)));
                 };
                 let [i, s, d] = &mut self.0;
                 let pool = match c {
