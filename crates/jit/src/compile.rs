@@ -40,8 +40,8 @@ fn err(what: impl std::fmt::Display) -> JitError {
 /// Cranelift's `opt_level = "none"`. Why: the egraph pass looks up a
 /// block's depth in its scope stack linearly, so a body whose dominator
 /// tree is deep (a CASE or an ELSIF chain of thousands of arms) compiles
-/// in time quadratic in its length; 20,000 ELSIF arms took 1.0 s with it
-/// and 0.5 s without, and 20,000 CASE arms 1.5 s and 0.6 s
+/// in time quadratic in its length; 20,000 ELSIF arms took 1.02 s with it
+/// and 0.77 s without, and 20,000 CASE arms 1.47 s and 0.89 s
 /// (`benches/compile_size.rs`). A body that long is straight-line control
 /// code, where the egraph's rewrites gain little. The compute kernels are
 /// hundreds of instructions long and keep `speed`.

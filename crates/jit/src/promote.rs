@@ -31,8 +31,8 @@ pub const MAX_SLOTS: usize = 32;
 /// Promote nothing in a function longer than this many IR instructions.
 /// A promoted slot is a Cranelift variable live across the whole function,
 /// and the register allocator's time grows faster than linearly with the
-/// length of such live ranges. A body of 20,000 statements took 1.4 s to
-/// compile with promotion and 0.56 s without (`benches/compile_size.rs`).
+/// length of such live ranges. A body of 20,000 statements took 1.41 s to
+/// compile with promotion and 0.69 s without (`benches/compile_size.rs`).
 /// Promotion pays in loops, and the loops of a body that long are a small
 /// part of it, so nothing measurable is lost. The compute kernels are
 /// hundreds of instructions long.
