@@ -85,6 +85,32 @@ pub(crate) fn access(inst: &Inst, reads: &mut Vec<Reg>) -> (Option<Reg>, bool) {
     (w, true)
 }
 
+/// Calls `visit(block, inst, regs, write)` for each instruction of `f` with
+/// the number of its basic block (`lead` marks the instructions that start
+/// one). `regs` are the registers it reads and `write` the one it writes;
+/// for a builtin, `regs` are its argument and result registers and `write`
+/// is `None`, and `own` is set: they must keep variables of their own.
+fn walk(f: &Func, lead: &[bool], mut visit: impl FnMut(u32, &Inst, &[Reg], Option<Reg>, bool)) {
+    let mut block = 0u32;
+    let mut reads = Vec::new();
+    for (pc, inst) in f.code.iter().enumerate() {
+        if pc > 0 && lead.get(pc).copied().unwrap_or(true) {
+            block += 1;
+        }
+        reads.clear();
+        let (write, ok) = access(inst, &mut reads);
+        if ok {
+            visit(block, inst, &reads, write, false);
+        } else if let Inst::Builtin {
+            dst, first, count, ..
+        } = *inst
+        {
+            reads.extend(f.builtin_args(first, count).iter().chain(dst.as_ref()));
+            visit(block, inst, &reads, None, true);
+        }
+    }
+}
+
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Seen {
     Never,
@@ -99,30 +125,10 @@ enum Seen {
 pub fn slots(f: &Func, lead: &[bool]) -> Vec<Option<u32>> {
     let n = f.regs.len();
     let mut seen = vec![Seen::Never; n];
-    let mut block = 0u32;
-    let mut reads = Vec::new();
-    for (pc, inst) in f.code.iter().enumerate() {
-        if pc > 0 && lead.get(pc).copied().unwrap_or(true) {
-            block += 1;
-        }
-        reads.clear();
-        let (write, ok) = access(inst, &mut reads);
-        if !ok {
-            if let Inst::Builtin {
-                dst, first, count, ..
-            } = *inst
-            {
-                for &r in f.builtin_args(first, count).iter().chain(dst.as_ref()) {
-                    if let Some(s) = seen.get_mut(r as usize) {
-                        *s = Seen::Shared;
-                    }
-                }
-            }
-            continue;
-        }
-        for &r in &reads {
+    walk(f, lead, |block, _, reads, write, own| {
+        for &r in reads {
             if let Some(s) = seen.get_mut(r as usize) {
-                if *s != Seen::In(block) {
+                if own || *s != Seen::In(block) {
                     *s = Seen::Shared;
                 }
             }
@@ -134,7 +140,7 @@ pub fn slots(f: &Func, lead: &[bool]) -> Vec<Option<u32>> {
                 _ => *s = Seen::Shared,
             }
         }
-    }
+    });
     // Slots in order of register number within each block and class.
     let mut next: std::collections::HashMap<(u32, u8), u32> = std::collections::HashMap::new();
     seen.iter()
@@ -184,31 +190,15 @@ pub fn shared(f: &Func, lead: &[bool]) -> Vec<Option<u32>> {
     }
     let blocks = block as usize + 1;
     let mut loops: Vec<(u32, u32)> = Vec::new();
-    let mut reads = Vec::new();
-    for (pc, inst) in f.code.iter().enumerate() {
-        let b = block_of.get(pc).copied().unwrap_or(0);
-        let mut touch = |r: Reg| {
-            if let Some(s) = span.get_mut(r as usize) {
+    walk(f, lead, |b, inst, reads, write, builtin| {
+        for &r in reads.iter().chain(write.as_ref()) {
+            if builtin {
+                if let Some(o) = own.get_mut(r as usize) {
+                    *o = true;
+                }
+            } else if let Some(s) = span.get_mut(r as usize) {
                 *s = Some(s.map_or((b, b), |(lo, hi)| (lo.min(b), hi.max(b))));
             }
-        };
-        reads.clear();
-        let (write, ok) = access(inst, &mut reads);
-        if !ok {
-            if let Inst::Builtin {
-                dst, first, count, ..
-            } = *inst
-            {
-                for &r in f.builtin_args(first, count).iter().chain(dst.as_ref()) {
-                    if let Some(o) = own.get_mut(r as usize) {
-                        *o = true;
-                    }
-                }
-            }
-            continue;
-        }
-        for &r in reads.iter().chain(write.as_ref()) {
-            touch(r);
         }
         let targets = match *inst {
             Inst::Jump { target } => [Some(target), None],
@@ -222,7 +212,7 @@ pub fn shared(f: &Func, lead: &[bool]) -> Vec<Option<u32>> {
                 }
             }
         }
-    }
+    });
     // Per block, the widest loop containing it: [lo, hi]. Bounded work,
     // else every register keeps its own variable (as before).
     let mut cover: Vec<(u32, u32)> = (0..blocks as u32).map(|x| (x, x)).collect();

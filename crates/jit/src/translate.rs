@@ -112,7 +112,8 @@ pub(crate) struct Pools([Vec<Variable>; 3]);
 
 impl Pools {
     /// The variable of every register of `f`: a pool slot's when it is
-    /// block-local, else its own.
+    /// block-local, one of a second pool's when `locals::shared` gives it
+    /// one, else its own.
     pub(crate) fn vars(&mut self, b: &mut FunctionBuilder<'_>, f: &Func) -> Vec<Variable> {
         let lead = leaders(&f.code);
         let slots = crate::locals::slots(f, &lead);
@@ -120,44 +121,33 @@ impl Pools {
         // The variables of registers live in several blocks, shared by
         // those whose ranges do not overlap: this function's own (an
         // inlined callee's ranges are in its own block numbering).
-        let mut long: [Vec<Variable>; 3] = Default::default();
+        let mut long = Pools::default();
         f.regs
             .iter()
             .zip(slots)
             .zip(shared)
-            .map(|((c, slot), wide)| {
-                let Some(k) = slot else {
-                    let Some(k) = wide else {
-                        return b.declare_var(class_type(*c));
-                    };
-                    let [i, s, d] = &mut long;
-                    let pool = match c {
-                        RegClass::I64 => i,
-                        RegClass::F32 => s,
-                        RegClass::F64 => d,
-                    };
-                    while pool.len() <= k as usize {
-                        pool.push(b.declare_var(class_type(*c)));
-                    }
-                    return pool
-                        .get(k as usize)
-                        .copied()
-                        .unwrap_or_else(|| b.declare_var(class_type(*c)));
-                };
-                let [i, s, d] = &mut self.0;
-                let pool = match c {
-                    RegClass::I64 => i,
-                    RegClass::F32 => s,
-                    RegClass::F64 => d,
-                };
-                while pool.len() <= k as usize {
-                    pool.push(b.declare_var(class_type(*c)));
-                }
-                pool.get(k as usize)
-                    .copied()
-                    .unwrap_or_else(|| b.declare_var(class_type(*c)))
+            .map(|((c, slot), wide)| match (slot, wide) {
+                (Some(k), _) => self.var(b, *c, k),
+                (None, Some(k)) => long.var(b, *c, k),
+                (None, None) => b.declare_var(class_type(*c)),
             })
             .collect()
+    }
+
+    /// The k-th variable of class `c` in this pool, declared when new.
+    fn var(&mut self, b: &mut FunctionBuilder<'_>, c: RegClass, k: u32) -> Variable {
+        let [i, s, d] = &mut self.0;
+        let pool = match c {
+            RegClass::I64 => i,
+            RegClass::F32 => s,
+            RegClass::F64 => d,
+        };
+        while pool.len() <= k as usize {
+            pool.push(b.declare_var(class_type(c)));
+        }
+        pool.get(k as usize)
+            .copied()
+            .unwrap_or_else(|| b.declare_var(class_type(c)))
     }
 }
 
